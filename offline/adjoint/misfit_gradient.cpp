@@ -1,0 +1,200 @@
+// misfit_gradient.cpp -- adjoint sweep, tangent sweeps and dot-product test
+// over whole records, built from the per-step linearization.
+#include "adjoint/misfit_gradient.h"
+
+#include <cmath>
+#include <random>
+
+#include "adjoint/step_linearization.h"
+#include "model/forward.h"
+
+namespace rtb {
+
+double MisfitValue::error() const { return J0 > 0.0 ? std::sqrt(J / J0) : INFINITY; }
+
+std::vector<double> quadrature_weights(const Record &rec, double fit_from) {
+  const size_t n = rec.t.size();
+  std::vector<double> w(n, 0.0);
+  const double t_start = rec.t[0] + fit_from;
+  for (size_t j = 0; j < n; ++j) {
+    const double left = j > 0 ? rec.t[j] - rec.t[j - 1] : 0.0;
+    const double right = j + 1 < n ? rec.t[j + 1] - rec.t[j] : 0.0;
+    w[j] = rec.t[j] >= t_start ? 0.5 * (left + right) * rec.weight : 0.0;
+  }
+  return w;
+}
+
+namespace {
+
+// Compensated (Kahan) sum: the misfit is a sum of 1e4..1e6 terms and finite
+// differences of it (gradcheck) see its rounding directly.
+struct KahanSum {
+  double s = 0.0, c = 0.0;
+  void add(double v) {
+    const double y = v - c, t = s + y;
+    c = (t - s) - y;
+    s = t;
+  }
+};
+
+StepView view_of(const rtb_params &p, const Trajectory &tr, const DriveGrid &g, size_t i) {
+  return StepView{&p, &tr.states[i - 1], &tr.states[i], &tr.stages[i * tr.n_stages], g.dt[i]};
+}
+
+void add_tikhonov(const rtb_params &p, const MisfitOptions &opt, MisfitValue &m) {
+  for (int i = 0; i < P_COUNT; ++i) {
+    const double R = opt.R[i];
+    if (R == 0.0) continue;
+    const double d = param_get(p, ParamId(i)) - opt.p0[i];
+    m.J += 0.5 * R * R * d * d;
+    m.grad[i] += R * R * d;
+  }
+}
+
+}  // namespace
+
+MisfitValue misfit(const rtb_params &p, const std::vector<Record> &recs,
+                   const MisfitOptions &opt, bool want_grad) {
+  MisfitValue m;
+  for (const Record &rec : recs) {
+    const DriveGrid g = make_drive_grid(rec, opt.sim);
+    const Trajectory tr = run_forward(p, g, want_grad, opt.sim.tol);
+    ++m.forward_solves;
+    m.forward_steps += (long)g.x.size() - 1;
+    m.newton_iterations += tr.newton_iterations;
+    const std::vector<double> w = quadrature_weights(rec, opt.fit_from);
+    std::vector<double> Fbar(g.x.size(), 0.0);
+    KahanSum Js, J0s;
+    for (size_t j = 0; j < rec.F.size(); ++j) {
+      const double res = tr.force[g.first_sample + j] - rec.F[j];
+      Js.add(0.5 * w[j] * res * res);
+      J0s.add(0.5 * w[j] * rec.F[j] * rec.F[j]);
+      Fbar[g.first_sample + j] = w[j] * res;
+    }
+    const double J = Js.s, J0 = J0s.s;
+    m.J += J;
+    m.J0 += J0;
+    m.J_rec.push_back(J);
+    m.J0_rec.push_back(J0);
+    if (!want_grad) continue;
+    // Backward sweep: the adjoint of the discrete stepper, last step first.
+    double *pbar = m.grad.data();
+    StateDual bar, bar_prev;
+    bar.clear();
+    for (size_t i = g.x.size() - 1; i >= 1; --i) {
+      const StepView v = view_of(p, tr, g, i);
+      force_vjp(v, Fbar[i], bar, pbar);
+      bar_prev.clear();
+      chain_vjp(v, bar, bar_prev, pbar);
+      bar = bar_prev;
+    }
+    ++m.adjoint_solves;
+    // Step 0 is the model at rest at x = 0 (the grid ramps in otherwise):
+    // its force is 0 whatever p, so it adds nothing to the gradient.
+  }
+  add_tikhonov(p, opt, m);
+  return m;
+}
+
+void residual_jacobian(const rtb_params &p, const std::vector<Record> &recs,
+                       const MisfitOptions &opt, const std::vector<ParamId> &free,
+                       Eigen::VectorXd &r, Eigen::MatrixXd *jac) {
+  std::vector<double> rv;
+  std::vector<std::vector<double>> cols(free.size());
+  for (const Record &rec : recs) {
+    const DriveGrid g = make_drive_grid(rec, opt.sim);
+    const Trajectory tr = run_forward(p, g, jac != nullptr, opt.sim.tol);
+    const std::vector<double> w = quadrature_weights(rec, opt.fit_from);
+    for (size_t j = 0; j < rec.F.size(); ++j)
+      if (w[j] > 0.0) rv.push_back(std::sqrt(w[j]) * (tr.force[g.first_sample + j] - rec.F[j]));
+    if (!jac) continue;
+    for (size_t c = 0; c < free.size(); ++c) {
+      double dp[P_COUNT] = {0};
+      dp[free[c]] = 1.0;
+      StateDual d, dn;
+      d.clear();
+      std::vector<double> dF(g.x.size(), 0.0);
+      for (size_t i = 1; i < g.x.size(); ++i) {
+        const StepView v = view_of(p, tr, g, i);
+        dn.clear();
+        chain_jvp(v, d, dp, dn);
+        dF[i] = force_jvp(v, dn, dp);
+        d = dn;
+      }
+      for (size_t j = 0; j < rec.F.size(); ++j)
+        if (w[j] > 0.0) cols[c].push_back(std::sqrt(w[j]) * dF[g.first_sample + j]);
+    }
+  }
+  r = Eigen::Map<Eigen::VectorXd>(rv.data(), (Eigen::Index)rv.size());
+  if (jac) {
+    jac->resize((Eigen::Index)rv.size(), (Eigen::Index)free.size());
+    for (size_t c = 0; c < free.size(); ++c)
+      jac->col((Eigen::Index)c) = Eigen::Map<Eigen::VectorXd>(cols[c].data(), (Eigen::Index)rv.size());
+  }
+}
+
+double dot_product_test(const rtb_params &p, const Record &rec, const SimOptions &sim,
+                        unsigned seed) {
+  const DriveGrid g = make_drive_grid(rec, sim);
+  const Trajectory tr = run_forward(p, g, true, sim.tol);
+  const size_t n = g.x.size();
+  const int N = p.cells;
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> nd(0.0, 1.0);
+  // Scale parameter directions to the parameters so every term matters.
+  double dp[P_COUNT] = {0}, pbar[P_COUNT] = {0};
+  for (int i = 0; i < P_COUNT; ++i) {
+    const double v = param_get(p, ParamId(i));
+    if (v != 0.0 || i == P_maxwell_k) dp[i] = nd(rng) * (v != 0.0 ? std::fabs(v) : 1.0) * 1e-3;
+  }
+  if (!(p.maxwell_tau > 0.0)) dp[P_maxwell_tau] = 0.0;
+  std::vector<StateDual> a(n), ybar(n), abar(n);
+  std::vector<double> Fbar(n);
+  for (size_t i = 0; i < n; ++i) {
+    a[i].clear();
+    ybar[i].clear();
+    for (int k = 0; k < N; ++k) {
+      a[i].y[k] = nd(rng) * 1e-3;
+      ybar[i].y[k] = nd(rng);
+    }
+    a[i].z = nd(rng) * 1e-3;
+    ybar[i].z = nd(rng);
+    Fbar[i] = nd(rng);
+  }
+  // Tangent sweep: d_i = M_i d_{i-1} + (dp terms) + a_i, then dF_i.
+  double lhs = 0.0;
+  StateDual d = a[0], dn;
+  for (int k = 0; k < N; ++k) lhs += ybar[0].y[k] * d.y[k];
+  lhs += ybar[0].z * d.z;
+  for (size_t i = 1; i < n; ++i) {
+    const StepView v = view_of(p, tr, g, i);
+    dn.clear();
+    chain_jvp(v, d, dp, dn);
+    for (int k = 0; k < N; ++k) dn.y[k] += a[i].y[k];
+    dn.z += a[i].z;
+    lhs += Fbar[i] * force_jvp(v, dn, dp);
+    for (int k = 0; k < N; ++k) lhs += ybar[i].y[k] * dn.y[k];
+    lhs += ybar[i].z * dn.z;
+    d = dn;
+  }
+  // Adjoint sweep.
+  StateDual bar = ybar[n - 1], prev;
+  for (size_t i = n - 1; i >= 1; --i) {
+    const StepView v = view_of(p, tr, g, i);
+    force_vjp(v, Fbar[i], bar, pbar);
+    abar[i] = bar;
+    prev = ybar[i - 1];
+    chain_vjp(v, bar, prev, pbar);
+    bar = prev;
+  }
+  abar[0] = bar;
+  double rhs = 0.0;
+  for (size_t i = 0; i < n; ++i) {
+    for (int k = 0; k < N; ++k) rhs += abar[i].y[k] * a[i].y[k];
+    rhs += abar[i].z * a[i].z;
+  }
+  for (int i = 0; i < P_COUNT; ++i) rhs += pbar[i] * dp[i];
+  return std::fabs(lhs - rhs) / std::fmax(std::fabs(lhs), std::fabs(rhs));
+}
+
+}  // namespace rtb

@@ -1,0 +1,41 @@
+// forward.h -- the forward model over a record: the real-time stepper run on
+// the record's own (possibly non-uniform) time grid, with the stage data kept
+// for the adjoint sweep.
+#ifndef RTB_OFFLINE_FORWARD_H
+#define RTB_OFFLINE_FORWARD_H
+
+#include <vector>
+
+#include "rt_bushing/src/rtb_internal.h"
+#include "rtb_offline.h"
+
+namespace rtb {
+
+// Input history actually driven through the stepper: an optional ramp from
+// rest to x[0] (not part of the misfit) followed by the record's samples.
+struct DriveGrid {
+  std::vector<double> x;     // displacement at every step end
+  std::vector<double> dt;    // step lengths (dt[0] unused: initial state)
+  int first_sample = 0;      // index in x of the record's sample 0
+};
+DriveGrid make_drive_grid(const Record &rec, const SimOptions &opt);
+
+// Everything the adjoint needs from one forward run.
+struct Trajectory {
+  std::vector<rtb_state> states;       // state after each drive step (0 = initial)
+  std::vector<rtb_stage> stages;       // stages per step (stride = n_stages)
+  std::vector<double> force;           // model force at each drive step
+  int n_stages = 1;
+  int first_sample = 0;
+  long newton_iterations = 0;
+  int not_converged = 0;               // steps reporting RTB_NOT_CONVERGED
+};
+
+// Run the stepper over the drive grid. keep_trace=false stores forces only.
+// Throws std::runtime_error (with the step index) on a stepper error.
+Trajectory run_forward(const rtb_params &p, const DriveGrid &grid, bool keep_trace,
+                       double tol = 1e-12);
+
+}  // namespace rtb
+
+#endif

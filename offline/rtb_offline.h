@@ -1,0 +1,91 @@
+// rtb_offline.h -- the offline half of rt_bushing: measured records in,
+// identified parameters out. C++17; the forward model is the real-time
+// stepper of rt_bushing.h itself, and every gradient is the exact adjoint of
+// that discrete stepper.
+//
+// Top-down: data (Record), parameters (ParamSet), forward model (simulate),
+// misfit and its adjoint gradient, identification, validation, output.
+#ifndef RTB_OFFLINE_H
+#define RTB_OFFLINE_H
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "rt_bushing/rt_bushing.h"
+
+namespace rtb {
+
+// ---------------------------------------------------------------- errors
+// Bad user input (file, line and column named in what()). The CLI prints it
+// and exits with status 2; nothing is written.
+struct InputError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// ---------------------------------------------------------------- records
+// One measured (or generated) force/displacement record.
+struct Record {
+  std::string path;                 // as given by the user
+  std::string units;                // the "# units: ..." comment, "" if absent
+  std::string sha256;               // of the file bytes, hex ("" if generated)
+  std::vector<double> t, x, F;      // time, displacement, force (same length)
+  double weight = 1.0;              // per-record weight in the misfit
+};
+
+// CSV: '#' comment lines, a header naming time, displacement, force (any
+// order, extra columns ignored), numeric rows. Throws InputError naming file
+// and line for: missing file, missing column, non-numeric or non-finite cell,
+// unequal row length, non-increasing time, fewer than kMinSamples rows.
+constexpr int kMinSamples = 8;
+Record read_record_csv(const std::string &path);
+
+// Writes time,displacement,force[,extra columns] with %.17g, atomically.
+void write_record_csv(const std::string &path, const std::vector<double> &t,
+                      const std::vector<double> &x, const std::vector<double> &F,
+                      const std::string &units);
+
+// ---------------------------------------------------------------- files
+// Write `content` to `path` via a temporary file in the same directory and
+// rename(2): readers never see a partial file and a failure leaves any
+// existing file untouched. Throws std::runtime_error on I/O failure.
+void write_file_atomic(const std::string &path, const std::string &content);
+std::string sha256_hex(const std::string &bytes);
+std::string sha256_file(const std::string &path);
+
+// ---------------------------------------------------------------- params
+// Parameter JSON: {"model":"rt"|"sts","cells":15,"integrator":"sdirk2"|"be",
+//   "params":{"K0":..,"Kpa":..,"Kr":..,"C0":..,"alpha":.., optional
+//   extensions "k3","k_asym","maxwell_k","maxwell_tau","viscous_c","mass",
+//   "backlash","mullins"; STS: "Ff"}}. Throws InputError on a missing,
+// non-numeric, negative or out-of-range value (alpha outside (0,1) named).
+rtb_params read_params_json(const std::string &path);
+rtb_params params_from_json_text(const std::string &text, const std::string &origin);
+// The "model/cells/integrator/params" part of a parameter file, as JSON text
+// (used by identify to build its richer output).
+std::string params_to_json_text(const rtb_params &p);
+
+// Identifiable parameters: the five of the paper, then the extensions.
+enum ParamId {
+  P_K0, P_Kpa, P_Kr, P_C0, P_alpha,
+  P_k3, P_k_asym, P_maxwell_k, P_maxwell_tau, P_viscous_c, P_mass, P_backlash, P_mullins,
+  P_COUNT
+};
+const char *param_name(ParamId id);          // "K0", "Kpa", ... as in the JSON
+double &param_ref(rtb_params &p, ParamId id);
+double param_get(const rtb_params &p, ParamId id);
+
+// ---------------------------------------------------------------- forward
+struct SimOptions {
+  double ramp_time = 0.0;   // ramp in linearly from rest to x[0] over this
+                            // time before the record (<= 0: automatic)
+  double tol = 1e-12;       // Newton tolerance of the stepper (rtb_settings)
+};
+// Force predicted by the stepper for the record's displacement and time grid.
+// Throws std::runtime_error if the stepper reports an error.
+std::vector<double> simulate_force(const rtb_params &p, const Record &rec,
+                                   const SimOptions &opt = SimOptions());
+
+}  // namespace rtb
+
+#endif

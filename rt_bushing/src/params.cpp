@@ -1,0 +1,123 @@
+/* params.cpp -- parameter defaults and validation, settings, status texts. */
+#include <math.h>
+#include <string.h>
+
+#include "rtb_internal.h"
+#include "tridiagonal.h"
+#include "no_heap.h"
+
+#define RTB_VERSION_STRING "0.1.0"
+
+extern "C" rtb_status rtb_params_default(rtb_params *p, int model) {
+  if (!p) return RTB_ERR_NULL;
+  if (model != RTB_MODEL_RT && model != RTB_MODEL_STS) return RTB_ERR_MODEL;
+  memset(p, 0, sizeof *p);
+  p->abi_version = RTB_ABI_VERSION;
+  p->model = model;
+  p->cells = RTB_DEFAULT_CELLS;
+  p->integrator = RTB_INTEGRATOR_SDIRK2;
+  /* Section 3.4 example values (issue #2), N/mm and N (s/mm)^alpha. */
+  p->K0 = 1000.0;
+  p->Kpa = 800.0;
+  p->Kr = 3000.0;
+  p->C0 = 40.0;
+  p->alpha = 0.2;
+  p->Ff = 40.0;
+  return RTB_OK;
+}
+
+static int finite_all(const rtb_params *p) {
+  const double v[] = {p->K0, p->Kpa, p->Kr, p->C0, p->alpha, p->Ff, p->k3, p->k_asym,
+                      p->maxwell_k, p->maxwell_tau, p->viscous_c, p->mass, p->backlash,
+                      p->mullins};
+  for (size_t i = 0; i < sizeof v / sizeof v[0]; ++i)
+    if (!isfinite(v[i])) return 0;
+  return 1;
+}
+
+extern "C" rtb_status rtb_params_validate(const rtb_params *p) {
+  if (!p) return RTB_ERR_NULL;
+  if (p->abi_version != RTB_ABI_VERSION) return RTB_ERR_ABI;
+  if (p->model != RTB_MODEL_RT && p->model != RTB_MODEL_STS) return RTB_ERR_MODEL;
+  if (p->integrator != RTB_INTEGRATOR_SDIRK2 && p->integrator != RTB_INTEGRATOR_BE)
+    return RTB_ERR_MODEL;
+  if (p->cells < 1 || p->cells > RTB_MAX_CELLS) return RTB_ERR_CELLS;
+  if (!finite_all(p)) return RTB_ERR_PARAM_NONFINITE;
+  for (int i = 0; i < RTB_N_RESERVED; ++i)
+    if (p->reserved[i] != 0.0) return RTB_ERR_RESERVED;
+  if (p->K0 < 0.0 || !(p->Kpa > 0.0) || !(p->Kr > 0.0)) return RTB_ERR_PARAM_RANGE;
+  if (p->model == RTB_MODEL_RT) {
+    if (!(p->C0 > 0.0)) return RTB_ERR_PARAM_RANGE;
+    if (!(p->alpha >= RTB_ALPHA_MIN && p->alpha < 1.0)) return RTB_ERR_ALPHA;
+  } else if (!(p->Ff > 0.0)) {
+    return RTB_ERR_PARAM_RANGE;
+  }
+  if (fabs(p->k_asym) > p->K0) return RTB_ERR_PARAM_RANGE;
+  if (p->maxwell_k < 0.0 || p->maxwell_tau < 0.0) return RTB_ERR_PARAM_RANGE;
+  if (p->maxwell_k > 0.0 && !(p->maxwell_tau > 0.0)) return RTB_ERR_PARAM_RANGE;
+  if (p->viscous_c < 0.0 || p->mass < 0.0 || p->backlash < 0.0) return RTB_ERR_PARAM_RANGE;
+  if (!(p->mullins >= 0.0 && p->mullins < 1.0)) return RTB_ERR_PARAM_RANGE;
+  return RTB_OK;
+}
+
+extern "C" void rtb_settings_default(rtb_settings *s) {
+  if (!s) return;
+  s->tol = 1e-12;
+  s->max_iter = 40;
+  s->max_backtrack = 30;
+}
+
+extern "C" rtb_status rtb_settings_resolve(const rtb_settings *in, rtb_settings *out) {
+  rtb_settings_default(out);
+  if (!in) return RTB_OK;
+  if (!(in->tol >= 1e-16 && in->tol <= 1e-2)) return RTB_ERR_SETTINGS;
+  if (in->max_iter < 1 || in->max_iter > 100) return RTB_ERR_SETTINGS;
+  if (in->max_backtrack < 0 || in->max_backtrack > 60) return RTB_ERR_SETTINGS;
+  *out = *in;
+  return RTB_OK;
+}
+
+extern "C" const char *rtb_status_message(rtb_status status) {
+  switch (status) {
+    case RTB_OK: return "ok";
+    case RTB_NOT_CONVERGED: return "implicit solve did not reach its tolerance; best iterate committed";
+    case RTB_ERR_NULL: return "a required pointer is NULL";
+    case RTB_ERR_ABI: return "abi_version does not match this library (rebuild against rt_bushing.h)";
+    case RTB_ERR_MODEL: return "unknown model or integrator";
+    case RTB_ERR_CELLS: return "cells must be between 1 and RTB_MAX_CELLS";
+    case RTB_ERR_PARAM_NONFINITE: return "a parameter is NaN or infinite";
+    case RTB_ERR_PARAM_RANGE: return "a parameter is out of range (stiffness/coefficient sign or bound)";
+    case RTB_ERR_ALPHA: return "alpha must satisfy RTB_ALPHA_MIN <= alpha < 1";
+    case RTB_ERR_RESERVED: return "reserved parameter slots must be zero";
+    case RTB_ERR_INPUT: return "displacement is non-finite or beyond RTB_X_MAX";
+    case RTB_ERR_DT: return "dt is non-finite or outside [RTB_DT_MIN, RTB_DT_MAX]";
+    case RTB_ERR_STATE: return "state is not initialised for these parameters";
+    case RTB_ERR_OVERFLOW: return "the step would produce a non-finite value";
+    case RTB_ERR_SETTINGS: return "settings out of range";
+  }
+  return "unknown status";
+}
+
+extern "C" void rtb_get_info(rtb_info *info) {
+  if (!info) return;
+  info->abi_version = RTB_ABI_VERSION;
+  info->max_cells = RTB_MAX_CELLS;
+  info->scalar_bytes = (int)sizeof(rtb_real);
+  info->version = RTB_VERSION_STRING;
+  info->scalar = "double";
+}
+
+extern "C" rtb_real rtb_static_force(const rtb_params *p, rtb_real x) {
+  if (!p) return 0.0;
+  /* All dashpots relaxed: Kpa and N springs Kr in series, parallel to K0. */
+  const double chain = 1.0 / (1.0 / p->Kpa + p->cells / p->Kr);
+  return p->K0 * x + chain * x + p->k3 * x * x * x + p->k_asym * fabs(x);
+}
+
+extern "C" int rtb_cell_states(const rtb_state *s, rtb_real *out, int cap) {
+  if (!s || !out) return RTB_ERR_NULL;
+  if (!s->initialised) return RTB_ERR_STATE;
+  const int n = s->cells < cap ? s->cells : cap;
+  for (int k = 0; k < n; ++k) out[k] = s->y[k];
+  return n;
+}

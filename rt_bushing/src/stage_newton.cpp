@@ -1,0 +1,156 @@
+/* stage_newton.cpp -- Newton solve of one implicit RT stage, eq. (2).
+ *
+ * Unknowns: the N dashpot forces f. Residual (see rtb_internal.h)
+ *   H(f) = f + h K phi(f) - r,   r = b - K c,
+ * which is M * grad E*(f) for the strictly convex dual energy
+ *   E*(f) = 1/2 (f - r)^T K^-1 (f - r) + h sum_k Phi*(f_k),
+ * so H = 0 has exactly one solution for every h > 0 (unconditional
+ * solvability) and Newton's direction is a descent direction of E*.
+ *
+ * Newton matrix: J = I + h K D, D = diag(phi'(f)), tridiagonal.
+ * Update rule per DOF (same tangent, different return to the curve): where the
+ * dashpot is steep (h K_kk phi'(f_k) > 1) the velocity is updated and the
+ * force recomputed as psi(v); elsewhere the force is updated and the velocity
+ * recomputed as phi(f). This keeps |v|^(1/alpha)-type growth out of the
+ * iteration when alpha is small (near-friction dashpots), where plain
+ * Newton in f needs O(1/alpha) iterations.
+ *
+ * Work per stage is bounded: at most max_iter iterations, each with one
+ * tridiagonal solve and at most max_backtrack+1 residual evaluations.
+ */
+#include <float.h>
+#include <math.h>
+
+#include "dashpot_law.h"
+#include "rtb_internal.h"
+#include "tridiagonal.h"
+#include "no_heap.h"
+
+namespace {
+
+struct Chain {
+  int n;
+  double Kpa, Kr, C0, alpha, h;
+};
+
+/* H = f + h K v - r; returns the max-norm, or +inf if anything is non-finite. */
+double residual(const Chain &ch, const double *f, const double *v, const double *r,
+                double *H) {
+  double Kv[RTB_MAX_CELLS];
+  rtb_chain_apply(ch.n, ch.Kpa, ch.Kr, v, Kv);
+  double nrm = 0.0;
+  for (int k = 0; k < ch.n; ++k) {
+    H[k] = f[k] + ch.h * Kv[k] - r[k];
+    double a = fabs(H[k]);
+    if (!(a <= DBL_MAX)) return INFINITY;
+    if (a > nrm) nrm = a;
+  }
+  return nrm;
+}
+
+/* Dual energy E*(f) up to a constant (used only for the Armijo test). */
+double dual_energy(const Chain &ch, const double *f, const double *v, const double *r) {
+  double w[RTB_MAX_CELLS], d[RTB_MAX_CELLS], work[RTB_MAX_CELLS];
+  for (int k = 0; k < ch.n; ++k) d[k] = w[k] = f[k] - r[k];
+  if (rtb_chain_solve(ch.n, ch.Kpa, ch.Kr, w, work) != 0) return INFINITY;
+  double e = 0.0;
+  for (int k = 0; k < ch.n; ++k)
+    e += 0.5 * d[k] * w[k] + ch.h * rtb_law_dual_potential(f[k], v[k], ch.alpha);
+  return e;
+}
+
+}  // namespace
+
+extern "C" rtb_status rtb_stage_solve(const rtb_params *p, const rtb_settings *set,
+                                      const double *v_guess, rtb_stage *st) {
+  const Chain ch = {p->cells, p->Kpa, p->Kr, p->C0, p->alpha, st->h};
+  const int n = ch.n;
+  if (n < 1 || n > RTB_MAX_CELLS) return RTB_ERR_STATE;
+  double r[RTB_MAX_CELLS], H[RTB_MAX_CELLS], D[RTB_MAX_CELLS], dl[RTB_MAX_CELLS];
+  double lo[RTB_MAX_CELLS], di[RTB_MAX_CELLS], up[RTB_MAX_CELLS], work[RTB_MAX_CELLS];
+  double ft[RTB_MAX_CELLS], vt[RTB_MAX_CELLS], Ht[RTB_MAX_CELLS];
+  bool steep[RTB_MAX_CELLS];
+
+  /* r = b - K c: the dashpot forces if no cell moved during the stage. */
+  rtb_chain_apply(n, ch.Kpa, ch.Kr, st->c, r);
+  double rnorm = 0.0;
+  for (int k = 0; k < n; ++k) {
+    r[k] = (k == 0 ? st->b1 : 0.0) - r[k];
+    if (fabs(r[k]) > rnorm) rnorm = fabs(r[k]);
+  }
+
+  double *f = st->f, *v = st->v;
+  for (int k = 0; k < n; ++k) {
+    v[k] = v_guess ? v_guess[k] : 0.0;
+    f[k] = rtb_law_force(v[k], ch.C0, ch.alpha);
+  }
+  double hnorm = residual(ch, f, v, r, H);
+  if (!(hnorm <= DBL_MAX)) { /* warm start unusable: start from rest */
+    for (int k = 0; k < n; ++k) f[k] = v[k] = 0.0;
+    hnorm = residual(ch, f, v, r, H);
+  }
+
+  st->converged = 0;
+  int it = 0;
+  for (;; ++it) {
+    double scale = rnorm;
+    for (int k = 0; k < n; ++k) scale = fmax(scale, fabs(f[k]));
+    if (hnorm <= set->tol * scale || hnorm <= DBL_MIN) { st->converged = 1; break; }
+    if (it >= set->max_iter) break;
+
+    /* Newton step: (I + h K D) df = -H. */
+    for (int k = 0; k < n; ++k) {
+      D[k] = rtb_law_dvdf(f[k], v[k], ch.alpha);
+      const double hKD = ch.h * rtb_chain_diag(k, ch.Kpa, ch.Kr) * D[k];
+      steep[k] = hKD > 1.0;
+      di[k] = 1.0 + hKD;
+      lo[k] = k > 0 ? -ch.h * ch.Kr * D[k - 1] : 0.0;
+      up[k] = k + 1 < n ? -ch.h * ch.Kr * D[k + 1] : 0.0;
+      dl[k] = -H[k];
+    }
+    if (rtb_tridiag_solve(n, lo, di, up, dl, work) != 0) break;
+
+    /* Line search: accept a sufficient decrease of |H| or of E*. */
+    double e0 = NAN, slope = NAN;
+    double t = 1.0;
+    bool accepted = false;
+    for (int bt = 0; bt <= set->max_backtrack; ++bt, t *= 0.5) {
+      for (int k = 0; k < n; ++k) {
+        if (steep[k]) {
+          vt[k] = v[k] + t * D[k] * dl[k];
+          ft[k] = rtb_law_force(vt[k], ch.C0, ch.alpha);
+        } else {
+          ft[k] = f[k] + t * dl[k];
+          vt[k] = rtb_law_velocity(ft[k], ch.C0, ch.alpha);
+        }
+      }
+      const double ht = residual(ch, ft, vt, r, Ht);
+      if (!(ht <= DBL_MAX)) continue;
+      bool ok = ht <= (1.0 - 1e-4 * t) * hnorm;
+      if (!ok) {
+        if (isnan(e0)) { /* lazily: E*(f) and its slope (K^-1 H)^T df */
+          e0 = dual_energy(ch, f, v, r);
+          double mh[RTB_MAX_CELLS];
+          for (int k = 0; k < n; ++k) mh[k] = H[k];
+          rtb_chain_solve(n, ch.Kpa, ch.Kr, mh, work);
+          slope = 0.0;
+          for (int k = 0; k < n; ++k) slope += mh[k] * dl[k];
+        }
+        ok = dual_energy(ch, ft, vt, r) <= e0 + 1e-4 * t * slope;
+      }
+      if (ok) {
+        for (int k = 0; k < n; ++k) { f[k] = ft[k]; v[k] = vt[k]; H[k] = Ht[k]; }
+        hnorm = ht;
+        accepted = true;
+        break;
+      }
+    }
+    if (!accepted) break;
+  }
+  st->iterations = it;
+  for (int k = 0; k < n; ++k) {
+    st->y[k] = st->c[k] + ch.h * v[k];
+    if (!isfinite(st->y[k])) return RTB_ERR_OVERFLOW;
+  }
+  return st->converged ? RTB_OK : RTB_NOT_CONVERGED;
+}

@@ -1,0 +1,299 @@
+/* step.cpp -- one step of the force element: integrator composition (SDIRK2
+ * or backward Euler over the stage solve), force of eq. (11) with the
+ * extensions, clearance (backlash) resolution, tangent dF/dx, public API.
+ */
+#include <float.h>
+#include <math.h>
+#include <string.h>
+
+#include "dashpot_law.h"
+#include "rtb_internal.h"
+#include "tridiagonal.h"
+#include "no_heap.h"
+
+extern "C" int rtb_integrator_stages(const rtb_params *p) {
+  return (p->model == RTB_MODEL_RT && p->integrator == RTB_INTEGRATOR_SDIRK2) ? 2 : 1;
+}
+
+static rtb_status worse(rtb_status a, rtb_status b) {
+  if (a < 0 || b < 0) return a < b ? a : b;
+  return a > b ? a : b;
+}
+
+/* Stage composition.
+ * BE:     y1 = y_n + dt phi(b(t_{n+1}) - K y1).
+ * SDIRK2: Y1 = y_n + g dt k1,  Y2 = y_n + (1-g) dt k1 + g dt k2,  y_{n+1} = Y2,
+ *         k_i = phi(b_i - K Y_i), b_1 at t_n + g dt (xb interpolated
+ *         linearly), b_2 at t_{n+1}; L-stable and stiffly accurate. */
+extern "C" rtb_status rtb_chain_advance(const rtb_params *p, const rtb_settings *set,
+                                        const rtb_state *s, double xb_new, double dt,
+                                        rtb_stage st[2]) {
+  const int n = p->cells;
+  if (rtb_integrator_stages(p) == 1) {
+    st[0].h = dt;
+    st[0].b1 = p->Kpa * xb_new;
+    memcpy(st[0].c, s->y, sizeof(double) * n);
+    return rtb_stage_solve(p, set, s->v, &st[0]);
+  }
+  const double g = RTB_SDIRK_GAMMA;
+  st[0].h = g * dt;
+  st[0].b1 = p->Kpa * (s->xb + g * (xb_new - s->xb));
+  memcpy(st[0].c, s->y, sizeof(double) * n);
+  rtb_status a = rtb_stage_solve(p, set, s->v, &st[0]);
+  if (a < 0) return a;
+  st[1].h = g * dt;
+  st[1].b1 = p->Kpa * xb_new;
+  for (int k = 0; k < n; ++k) st[1].c[k] = s->y[k] + (1.0 - g) * dt * st[0].v[k];
+  return worse(a, rtb_stage_solve(p, set, st[0].v, &st[1]));
+}
+
+/* Tangent of one converged stage: (I + h D K) dy = dc + h D e1 db1. */
+static void stage_tangent(const rtb_params *p, const rtb_stage *st, const double *dc,
+                          double db1, double *dy) {
+  const int n = p->cells;
+  if (n < 1 || n > RTB_MAX_CELLS) return;
+  double lo[RTB_MAX_CELLS], di[RTB_MAX_CELLS], up[RTB_MAX_CELLS], work[RTB_MAX_CELLS];
+  for (int k = 0; k < n; ++k) {
+    const double D = rtb_law_dvdf(st->f[k], st->v[k], p->alpha);
+    di[k] = 1.0 + st->h * D * rtb_chain_diag(k, p->Kpa, p->Kr);
+    lo[k] = k > 0 ? -st->h * D * p->Kr : 0.0;
+    up[k] = k + 1 < n ? -st->h * D * p->Kr : 0.0;
+    dy[k] = (dc ? dc[k] : 0.0) + (k == 0 ? st->h * D * db1 : 0.0);
+  }
+  rtb_tridiag_solve(n, lo, di, up, dy, work);
+}
+
+/* d y1_new / d xb_new of the chain advance (RT). */
+static double chain_dy1_dxb(const rtb_params *p, const rtb_stage st[2], double dt) {
+  double dy[RTB_MAX_CELLS];
+  if (rtb_integrator_stages(p) == 1) {
+    stage_tangent(p, &st[0], NULL, p->Kpa, dy);
+    return dy[0];
+  }
+  const double g = RTB_SDIRK_GAMMA;
+  double dc[RTB_MAX_CELLS];
+  stage_tangent(p, &st[0], NULL, p->Kpa * g, dy);
+  for (int k = 0; k < p->cells; ++k) dc[k] = (1.0 - g) / g * dy[k]; /* (1-g) dt dv1 */
+  stage_tangent(p, &st[1], dc, p->Kpa, dy);
+  (void)dt;
+  return dy[0];
+}
+
+/* Maxwell branch with xb linear over the step, integrated exactly:
+ * tau z' = xb - z. Returns z_new; *dz = d z_new / d xb_new. */
+static double maxwell_update(const rtb_params *p, const rtb_state *s, double xb, double dt,
+                             double *dz) {
+    /* z evolves whenever tau is set, so d F / d maxwell_k is exact at k = 0. */
+  if (!(p->maxwell_tau > 0.0)) { *dz = 0.0; return s->z_maxwell; }
+  const double tau = p->maxwell_tau;
+  const double one_minus_e = -expm1(-dt / tau);
+  const double slope = (xb - s->xb) / dt;
+  const double z = xb - slope * tau + (1.0 - one_minus_e) * (s->z_maxwell - s->xb + slope * tau);
+  *dz = 1.0 - tau / dt * one_minus_e;
+  return z;
+}
+
+extern "C" double rtb_bushing_force(const rtb_params *p, const rtb_state *s_old, double xb,
+                                    double y1, double z, double dt, double *dF_dxb) {
+  /* Mullins: K0 softened by (1 - mu (1 - |xb|/xb_max)) below the prior max. */
+  const double ax = fabs(xb);
+  double eta = 1.0, deta = 0.0;
+  if (p->mullins > 0.0 && ax < s_old->xb_max) {
+    eta = 1.0 - p->mullins * (1.0 - ax / s_old->xb_max);
+    deta = p->mullins * (xb >= 0.0 ? 1.0 : -1.0) / s_old->xb_max;
+  }
+  const double sgn = xb > 0.0 ? 1.0 : (xb < 0.0 ? -1.0 : 0.0);
+  const double F = p->K0 * xb * eta          /* eq. (11): K0 y0 */
+                   + p->Kpa * (xb - y1)      /* eq. (11): Kpa (y0 - y1) */
+                   + p->k3 * xb * xb * xb + p->k_asym * ax +
+                   p->maxwell_k * (xb - z) + p->viscous_c * (xb - s_old->xb) / dt;
+  if (dF_dxb)
+    *dF_dxb = p->K0 * (eta + xb * deta) + p->Kpa + 3.0 * p->k3 * xb * xb + p->k_asym * sgn +
+              p->maxwell_k + p->viscous_c / dt; /* at fixed y1 and z */
+  return F;
+}
+
+namespace {
+
+/* Response of the bushing (no inertia) to a bushing displacement xb. */
+struct Response {
+  rtb_stage st[2];
+  double y[RTB_MAX_CELLS];
+  double z, F, dF;  /* force and total dF/dxb */
+  int iterations;
+  rtb_status status;
+};
+
+void respond(const rtb_state *s, const rtb_params *p, const rtb_settings *set, double xb,
+             double dt, bool tangent, Response *r) {
+  const int n = p->cells;
+  double dy1 = 0.0;
+  if (p->model == RTB_MODEL_RT) {
+    r->status = rtb_chain_advance(p, set, s, xb, dt, r->st);
+    const int ns = rtb_integrator_stages(p);
+    memcpy(r->y, r->st[ns - 1].y, sizeof(double) * n);
+    r->iterations = r->st[0].iterations + (ns == 2 ? r->st[1].iterations : 0);
+    if (tangent && r->status >= 0) dy1 = chain_dy1_dxb(p, r->st, dt);
+  } else {
+    r->status = rtb_sts_solve(p, s->y, xb, r->y, &r->iterations, tangent ? &dy1 : NULL);
+  }
+  double dz;
+  r->z = maxwell_update(p, s, xb, dt, &dz);
+  double dF_fixed;
+  r->F = rtb_bushing_force(p, s, xb, r->y[0], r->z, dt, &dF_fixed);
+  /* dF_fixed holds y1 and z fixed; add their own dependence on xb. */
+  r->dF = dF_fixed - p->Kpa * dy1 - p->maxwell_k * dz;
+}
+
+}  // namespace
+
+/* Clearance of total width g in series (backlash): the bushing end xb stays
+ * within [x - g/2, x + g/2]; inside the gap the bushing carries no load, so
+ * xb = clamp(xb_free, x - g/2, x + g/2) with F(xb_free) = 0. F is increasing
+ * in xb, so a safeguarded Newton/bisection on [x-g/2, x+g/2] finds it.
+ * Bounded: at most 2 + RTB_BACKLASH_ITERS responses per step. */
+#define RTB_BACKLASH_ITERS 30
+static void resolve_backlash(const rtb_state *s, const rtb_params *p, const rtb_settings *set,
+                             double x, double dt, Response *r, double *xb_out, int *contact) {
+  const double lo = x - 0.5 * p->backlash, hi = x + 0.5 * p->backlash;
+  double xb = fmin(fmax(s->xb, lo), hi);
+  respond(s, p, set, xb, dt, true, r);
+  *contact = 1;
+  if (r->status < 0) { *xb_out = xb; return; }
+  if ((xb == lo && r->F >= 0.0) || (xb == hi && r->F <= 0.0) || r->F == 0.0) {
+    *xb_out = xb;
+    *contact = r->F != 0.0;
+    return;
+  }
+  double a = lo, b = hi;
+  if (r->F > 0.0) {
+    b = xb;
+    respond(s, p, set, lo, dt, true, r);
+    if (r->status < 0 || r->F >= 0.0) { *xb_out = lo; return; }
+  } else {
+    a = xb;
+    respond(s, p, set, hi, dt, true, r);
+    if (r->status < 0 || r->F <= 0.0) { *xb_out = hi; return; }
+  }
+  *contact = 0;
+  double scale = fabs(p->K0) + p->Kpa;
+  xb = 0.5 * (a + b);
+  for (int it = 0; it < RTB_BACKLASH_ITERS; ++it) {
+    respond(s, p, set, xb, dt, true, r);
+    if (r->status < 0) break;
+    if (r->F > 0.0) b = xb; else a = xb;
+    if (fabs(r->F) <= set->tol * scale * (fabs(xb) + p->backlash) || b - a <= 4 * DBL_EPSILON * fabs(xb))
+      break;
+    double nx = xb - r->F / r->dF;
+    xb = (r->dF > 0.0 && nx > a && nx < b) ? nx : 0.5 * (a + b);
+  }
+  *xb_out = xb;
+}
+
+static rtb_status check_call(const rtb_state *s, const rtb_params *p, double x, double dt) {
+  if (!s || !p) return RTB_ERR_NULL;
+  rtb_status v = rtb_params_validate(p);
+  if (v != RTB_OK) return v;
+  if (!s->initialised || s->abi_version != RTB_ABI_VERSION || s->model != p->model ||
+      s->cells != p->cells)
+    return RTB_ERR_STATE;
+  if (!isfinite(x) || fabs(x) > RTB_X_MAX) return RTB_ERR_INPUT;
+  if (!(dt >= RTB_DT_MIN && dt <= RTB_DT_MAX)) return RTB_ERR_DT;
+  return RTB_OK;
+}
+
+extern "C" rtb_status rtb_step_detailed(const rtb_state *s, const rtb_params *p,
+                                        const rtb_settings *set_in, double x, double dt,
+                                        rtb_state *out, double *force, double *dforce_dx,
+                                        rtb_stage stages[2]) {
+  rtb_status st = check_call(s, p, x, dt);
+  if (st != RTB_OK) return st;
+  rtb_settings set;
+  st = rtb_settings_resolve(set_in, &set);
+  if (st != RTB_OK) return st;
+
+  Response r;
+  double xb = x;
+  int contact = 1;
+  if (p->backlash > 0.0) resolve_backlash(s, p, &set, x, dt, &r, &xb, &contact);
+  else respond(s, p, &set, xb, dt, dforce_dx != NULL, &r);
+  if (r.status < 0) return r.status;
+
+  /* Inertia of the load path: F += m a with backward differences of x. */
+  const double vx = (x - s->x) / dt;
+  const double F = r.F + p->mass * (vx - s->vx) / dt;
+  const double dF = (contact ? r.dF : 0.0) + p->mass / (dt * dt);
+  if (!isfinite(F) || !isfinite(dF)) return RTB_ERR_OVERFLOW;
+
+  const int n = p->cells;
+  rtb_state next = *s;
+  next.x = x;
+  next.xb = xb;
+  next.force = F;
+  next.time = s->time + dt;
+  memcpy(next.y, r.y, sizeof(double) * n);
+  if (p->model == RTB_MODEL_RT) {
+    const rtb_stage &last = r.st[rtb_integrator_stages(p) - 1];
+    memcpy(next.v, last.v, sizeof(double) * n);
+  }
+  next.z_maxwell = r.z;
+  next.xb_max = fmax(s->xb_max, fabs(xb));
+  next.vx = vx;
+  next.steps = s->steps + 1;
+  next.last_iterations = r.iterations;
+  for (int k = 0; k < n; ++k)
+    if (!isfinite(next.y[k]) || !isfinite(next.v[k])) return RTB_ERR_OVERFLOW;
+
+  *out = next;
+  if (force) *force = F;
+  if (dforce_dx) *dforce_dx = dF;
+  if (stages && p->model == RTB_MODEL_RT) memcpy(stages, r.st, sizeof r.st);
+  return r.status;
+}
+
+extern "C" rtb_status rtb_state_init(rtb_state *s, const rtb_params *p, rtb_real x0) {
+  if (!s || !p) return RTB_ERR_NULL;
+  rtb_status v = rtb_params_validate(p);
+  if (v != RTB_OK) return v;
+  if (!isfinite(x0) || fabs(x0) > RTB_X_MAX) return RTB_ERR_INPUT;
+  rtb_state t;
+  memset(&t, 0, sizeof t);
+  t.abi_version = RTB_ABI_VERSION;
+  t.model = p->model;
+  t.cells = p->cells;
+  t.initialised = 1;
+  t.x = t.xb = x0;
+  /* Relaxed equilibrium: K y = b (every dashpot/friction force zero). */
+  double work[RTB_MAX_CELLS];
+  for (int k = 0; k < p->cells; ++k) t.y[k] = k == 0 ? p->Kpa * x0 : 0.0;
+  rtb_chain_solve(p->cells, p->Kpa, p->Kr, t.y, work);
+  t.z_maxwell = x0;
+  t.xb_max = fabs(x0);
+  t.force = rtb_static_force(p, x0);
+  *s = t;
+  return RTB_OK;
+}
+
+extern "C" rtb_status rtb_evaluate(const rtb_state *s, const rtb_params *p,
+                                   const rtb_settings *set, rtb_real x, rtb_real dt,
+                                   rtb_state *trial, rtb_real *force, rtb_real *dforce_dx) {
+  if (!trial || !force) return RTB_ERR_NULL;
+  if (trial == s) return RTB_ERR_NULL;
+  return rtb_step_detailed(s, p, set, x, dt, trial, force, dforce_dx, NULL);
+}
+
+extern "C" rtb_status rtb_commit(rtb_state *s, const rtb_state *trial) {
+  if (!s || !trial) return RTB_ERR_NULL;
+  if (!trial->initialised) return RTB_ERR_STATE;
+  if (s != trial) *s = *trial;
+  return RTB_OK;
+}
+
+extern "C" rtb_status rtb_step(rtb_state *s, const rtb_params *p, const rtb_settings *set,
+                               rtb_real x, rtb_real dt, rtb_real *force) {
+  if (!force) return RTB_ERR_NULL;
+  rtb_state next;
+  rtb_status st = rtb_step_detailed(s, p, set, x, dt, &next, force, NULL, NULL);
+  if (st >= 0) *s = next;
+  return st;
+}

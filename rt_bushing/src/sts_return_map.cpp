@@ -1,0 +1,76 @@
+/* sts_return_map.cpp -- one step of the STS model (section 3.1, Figure 3).
+ *
+ * Cells of spring Kr in parallel with a friction element of threshold Ff,
+ * chained exactly as the RT cells of eq. (2) (alpha = 0 limit, C0 = Ff).
+ * The step is rate-independent; its backward-Euler form is the convex problem
+ *   K y + f = b,  |f_k| <= Ff,  f_k = Ff sign(y_k - y_k_old) where y_k moves,
+ * solved exactly by a primal-dual active-set method. K is a Stieltjes
+ * (M-)matrix, for which the method terminates in finitely many iterations;
+ * we cap them at 2N + 4 and report RTB_NOT_CONVERGED beyond.
+ */
+#include <math.h>
+
+#include "rtb_internal.h"
+#include "tridiagonal.h"
+#include "no_heap.h"
+
+extern "C" rtb_status rtb_sts_solve(const rtb_params *p, const double *y_old,
+                                    double xb_new, double *y_new, int *iterations,
+                                    double *dy1_dxb) {
+  const int n = p->cells;
+  if (n < 1 || n > RTB_MAX_CELLS) return RTB_ERR_STATE;
+  const double Kpa = p->Kpa, Kr = p->Kr, Ff = p->Ff;
+  double f[RTB_MAX_CELLS], lo[RTB_MAX_CELLS], di[RTB_MAX_CELLS], up[RTB_MAX_CELLS];
+  double rhs[RTB_MAX_CELLS], work[RTB_MAX_CELLS];
+  int act[RTB_MAX_CELLS]; /* -1 sliding down, 0 stuck, +1 sliding up */
+
+  /* Elastic trial: nothing slides. */
+  rtb_chain_apply(n, Kpa, Kr, y_old, f);
+  for (int k = 0; k < n; ++k) {
+    f[k] = (k == 0 ? Kpa * xb_new : 0.0) - f[k];
+    act[k] = f[k] > Ff ? 1 : (f[k] < -Ff ? -1 : 0);
+  }
+  const double tie = 1e-13 * Ff;
+  for (int it = 0; it <= 2 * n + 4; ++it) {
+    /* Solve with the current active set: stuck DOFs keep y_old, sliding DOFs
+     * carry exactly +-Ff. */
+    for (int k = 0; k < n; ++k) {
+      if (act[k] == 0) {
+        di[k] = 1.0; lo[k] = 0.0; up[k] = 0.0; rhs[k] = y_old[k];
+      } else {
+        di[k] = rtb_chain_diag(k, Kpa, Kr);
+        lo[k] = k > 0 ? -Kr : 0.0;
+        up[k] = k + 1 < n ? -Kr : 0.0;
+        rhs[k] = (k == 0 ? Kpa * xb_new : 0.0) - act[k] * Ff;
+      }
+    }
+    if (rtb_tridiag_solve(n, lo, di, up, rhs, work) != 0) return RTB_ERR_OVERFLOW;
+    rtb_chain_apply(n, Kpa, Kr, rhs, f);
+    bool same = true;
+    for (int k = 0; k < n; ++k) {
+      f[k] = (k == 0 ? Kpa * xb_new : 0.0) - f[k];
+      /* Complementarity function: friction force plus scaled slip. */
+      const double g = (act[k] == 0 ? f[k] : act[k] * Ff) +
+                       rtb_chain_diag(k, Kpa, Kr) * (rhs[k] - y_old[k]);
+      const int a = g > Ff + tie ? 1 : (g < -Ff - tie ? -1 : 0);
+      if (a != act[k]) { same = false; act[k] = a; }
+    }
+    if (same) {
+      for (int k = 0; k < n; ++k) {
+        y_new[k] = rhs[k];
+        if (!isfinite(y_new[k])) return RTB_ERR_OVERFLOW;
+      }
+      *iterations = it + 1;
+      if (dy1_dxb) { /* same active set: sliding DOFs follow b, stuck ones stay */
+        for (int k = 0; k < n; ++k) rhs[k] = (k == 0 && act[k] != 0) ? Kpa : 0.0;
+        rtb_tridiag_solve(n, lo, di, up, rhs, work);
+        *dy1_dxb = rhs[0];
+      }
+      return RTB_OK;
+    }
+  }
+  for (int k = 0; k < n; ++k) y_new[k] = rhs[k];
+  *iterations = 2 * n + 5;
+  if (dy1_dxb) *dy1_dxb = 0.0;
+  return RTB_NOT_CONVERGED;
+}

@@ -1,0 +1,61 @@
+/* tridiagonal.h -- Thomas algorithm for the chain matrices of eq. (2).
+ *
+ * The cell chain couples only neighbours, so every linear system of the
+ * stepper (Newton step, tangent, adjoint) is tridiagonal: O(N) work, no
+ * pivoting. The Newton matrix I + h K D is column diagonally dominant and the
+ * stiffness K is symmetric positive definite, both safe without pivoting.
+ */
+#ifndef RTB_TRIDIAGONAL_H
+#define RTB_TRIDIAGONAL_H
+
+#include "../rt_bushing.h"
+
+/* Solve A x = rhs, A with sub-diagonal lo[1..n-1], diagonal di[0..n-1] and
+ * super-diagonal up[0..n-2]. rhs is overwritten by x. work has n entries.
+ * Returns 0, or -1 on a zero pivot. */
+static inline int rtb_tridiag_solve(int n, const double *lo, const double *di,
+                                    const double *up, double *rhs, double *work) {
+  if (n < 1) return -1;
+  double piv = di[0];
+  if (piv == 0.0) return -1;
+  rhs[0] /= piv;
+  for (int k = 1; k < n; ++k) {
+    work[k] = up[k - 1] / piv;
+    piv = di[k] - lo[k] * work[k];
+    if (piv == 0.0) return -1;
+    rhs[k] = (rhs[k] - lo[k] * rhs[k - 1]) / piv;
+  }
+  for (int k = n - 2; k >= 0; --k) rhs[k] -= work[k + 1] * rhs[k + 1];
+  return 0;
+}
+
+/* Diagonal of the chain stiffness K of eq. (2): Kpa+Kr for the first DOF,
+ * 2 Kr for the others (the last cell's spring ties to ground). Off-diagonals
+ * are -Kr. */
+static inline double rtb_chain_diag(int k, double Kpa, double Kr) {
+  return k == 0 ? Kpa + Kr : 2.0 * Kr;
+}
+
+/* out = K u for the chain stiffness. */
+static inline void rtb_chain_apply(int n, double Kpa, double Kr, const double *u, double *out) {
+  for (int k = 0; k < n; ++k) {
+    double s = rtb_chain_diag(k, Kpa, Kr) * u[k];
+    if (k > 0) s -= Kr * u[k - 1];
+    if (k + 1 < n) s -= Kr * u[k + 1];
+    out[k] = s;
+  }
+}
+
+/* Solve K x = rhs in place (K symmetric positive definite). */
+static inline int rtb_chain_solve(int n, double Kpa, double Kr, double *rhs, double *work) {
+  if (n < 1 || n > RTB_MAX_CELLS) return -1;
+  double lo[RTB_MAX_CELLS], di[RTB_MAX_CELLS], up[RTB_MAX_CELLS];
+  for (int k = 0; k < n; ++k) {
+    di[k] = rtb_chain_diag(k, Kpa, Kr);
+    lo[k] = -Kr;
+    up[k] = -Kr;
+  }
+  return rtb_tridiag_solve(n, lo, di, up, rhs, work);
+}
+
+#endif
