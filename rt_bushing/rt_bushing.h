@@ -127,7 +127,9 @@ typedef struct rtb_state {
   rtb_real force;              /* last committed force [force] */
   rtb_real time;               /* accumulated dt [time] */
   rtb_real y[RTB_MAX_CELLS];   /* cell DOFs y_k of eq. (2) [length] */
-  rtb_real v[RTB_MAX_CELLS];   /* last cell velocities (Newton warm start) */
+  rtb_real v[RTB_MAX_CELLS];   /* cell velocities at the end of the last step */
+  rtb_real v_prev[RTB_MAX_CELLS]; /* ... and of the step before (predictor) */
+  rtb_real dt_prev;            /* length of the last step [time] */
   rtb_real z_maxwell;          /* Maxwell branch internal displacement */
   rtb_real xb_max;             /* prior maximum |xb| (Mullins memory) */
   rtb_real vx;                 /* last input velocity estimate (inertia) */

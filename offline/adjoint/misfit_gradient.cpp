@@ -37,10 +37,6 @@ struct KahanSum {
   }
 };
 
-StepView view_of(const rtb_params &p, const Trajectory &tr, const DriveGrid &g, size_t i) {
-  return StepView{&p, &tr.states[i - 1], &tr.states[i], &tr.stages[i * tr.n_stages], g.dt[i]};
-}
-
 void add_tikhonov(const rtb_params &p, const MisfitOptions &opt, MisfitValue &m) {
   for (int i = 0; i < P_COUNT; ++i) {
     const double R = opt.R[i];
@@ -82,7 +78,7 @@ MisfitValue misfit(const rtb_params &p, const std::vector<Record> &recs,
     StateDual bar, bar_prev;
     bar.clear();
     for (size_t i = g.x.size() - 1; i >= 1; --i) {
-      const StepView v = view_of(p, tr, g, i);
+      const StepView v = tr.step(p, g, i);
       force_vjp(v, Fbar[i], bar, pbar);
       bar_prev.clear();
       chain_vjp(v, bar, bar_prev, pbar);
@@ -115,7 +111,7 @@ void residual_jacobian(const rtb_params &p, const std::vector<Record> &recs,
       d.clear();
       std::vector<double> dF(g.x.size(), 0.0);
       for (size_t i = 1; i < g.x.size(); ++i) {
-        const StepView v = view_of(p, tr, g, i);
+        const StepView v = tr.step(p, g, i);
         dn.clear();
         chain_jvp(v, d, dp, dn);
         dF[i] = force_jvp(v, dn, dp);
@@ -167,7 +163,7 @@ double dot_product_test(const rtb_params &p, const Record &rec, const SimOptions
   for (int k = 0; k < N; ++k) lhs += ybar[0].y[k] * d.y[k];
   lhs += ybar[0].z * d.z;
   for (size_t i = 1; i < n; ++i) {
-    const StepView v = view_of(p, tr, g, i);
+    const StepView v = tr.step(p, g, i);
     dn.clear();
     chain_jvp(v, d, dp, dn);
     for (int k = 0; k < N; ++k) dn.y[k] += a[i].y[k];
@@ -180,7 +176,7 @@ double dot_product_test(const rtb_params &p, const Record &rec, const SimOptions
   // Adjoint sweep.
   StateDual bar = ybar[n - 1], prev;
   for (size_t i = n - 1; i >= 1; --i) {
-    const StepView v = view_of(p, tr, g, i);
+    const StepView v = tr.step(p, g, i);
     force_vjp(v, Fbar[i], bar, pbar);
     abar[i] = bar;
     prev = ybar[i - 1];

@@ -13,7 +13,7 @@
 #ifndef RTB_OFFLINE_STEP_LINEARIZATION_H
 #define RTB_OFFLINE_STEP_LINEARIZATION_H
 
-#include "rt_bushing/src/rtb_internal.h"
+#include "model/forward.h"
 #include "rtb_offline.h"
 
 namespace rtb {
@@ -23,14 +23,6 @@ struct StateDual {
   double y[RTB_MAX_CELLS];  // cell DOFs
   double z;                 // Maxwell branch displacement
   void clear();
-};
-
-// Everything one step needs to be linearized: both states and the stages.
-struct StepView {
-  const rtb_params *p;
-  const rtb_state *old_s, *new_s;
-  const rtb_stage *stages;  // rtb_integrator_stages(p) entries
-  double dt;
 };
 
 // Chain + Maxwell state: d_new = M d_old + (d/dp) dp.

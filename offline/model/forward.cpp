@@ -47,6 +47,49 @@ DriveGrid make_drive_grid(const Record &rec, const SimOptions &opt) {
   return g;
 }
 
+namespace {
+// Record layout per step: xb, vx, z, xb_max, y[n], then per stage h f[n] v[n] y[n].
+void store(const rtb_state &s, const rtb_stage *stg, int ns, int n, double *d) {
+  d[0] = s.xb;
+  d[1] = s.vx;
+  d[2] = s.z_maxwell;
+  d[3] = s.xb_max;
+  std::copy(s.y, s.y + n, d + 4);
+  d += 4 + n;
+  for (int k = 0; k < ns; ++k) {
+    if (stg) {
+      d[0] = stg[k].h;
+      std::copy(stg[k].f, stg[k].f + n, d + 1);
+      std::copy(stg[k].v, stg[k].v + n, d + 1 + n);
+      std::copy(stg[k].y, stg[k].y + n, d + 1 + 2 * n);
+    } else {
+      std::fill(d, d + 1 + 3 * n, 0.0);
+    }
+    d += 1 + 3 * n;
+  }
+}
+}  // namespace
+
+StepView Trajectory::step(const rtb_params &p, const DriveGrid &g, size_t i) const {
+  const size_t S = stride();
+  const double *a = &data[(i - 1) * S], *b = &data[i * S];
+  StepView v;
+  v.p = &p;
+  v.dt = g.dt[i];
+  v.xb_old = a[0];
+  v.vx_old = a[1];
+  v.z_old = a[2];
+  v.xbmax_old = a[3];
+  v.xb_new = b[0];
+  v.vx_new = b[1];
+  v.z_new = b[2];
+  v.y_new = b + 4;
+  const double *q = b + 4 + cells;
+  for (int k = 0; k < n_stages; ++k, q += 1 + 3 * cells)
+    v.st[k] = StageView{q[0], q + 1, q + 1 + cells, q + 1 + 2 * cells};
+  return v;
+}
+
 Trajectory run_forward(const rtb_params &p, const DriveGrid &grid, bool keep_trace, double tol) {
   rtb_settings set;
   rtb_settings_default(&set);
@@ -55,16 +98,17 @@ Trajectory run_forward(const rtb_params &p, const DriveGrid &grid, bool keep_tra
   Trajectory tr;
   tr.first_sample = grid.first_sample;
   tr.n_stages = rtb_integrator_stages(&p);
+  tr.cells = p.cells;
   const size_t n = grid.x.size();
   rtb_state s;
   rtb_status st = rtb_state_init(&s, &p, grid.x[0]);
   if (st != RTB_OK) throw std::runtime_error(std::string("rt_bushing: ") + rtb_status_message(st));
   tr.force.resize(n);
   tr.force[0] = s.force;
+  const size_t S = tr.stride();
   if (keep_trace) {
-    tr.states.resize(n);
-    tr.stages.resize(n * tr.n_stages);
-    tr.states[0] = s;
+    tr.data.resize(n * S);
+    store(s, nullptr, tr.n_stages, p.cells, &tr.data[0]);
   }
   rtb_stage stg[2];
   for (size_t i = 1; i < n; ++i) {
@@ -79,10 +123,7 @@ Trajectory run_forward(const rtb_params &p, const DriveGrid &grid, bool keep_tra
     tr.newton_iterations += next.last_iterations;
     s = next;
     tr.force[i] = F;
-    if (keep_trace) {
-      tr.states[i] = s;
-      for (int k = 0; k < tr.n_stages; ++k) tr.stages[i * tr.n_stages + k] = stg[k];
-    }
+    if (keep_trace) store(s, stg, tr.n_stages, p.cells, &tr.data[i * S]);
   }
   return tr;
 }

@@ -20,15 +20,36 @@ struct DriveGrid {
 };
 DriveGrid make_drive_grid(const Record &rec, const SimOptions &opt);
 
-// Everything the adjoint needs from one forward run.
+// One implicit stage as the linearization sees it (views into Trajectory).
+struct StageView {
+  double h;
+  const double *f, *v, *y;  // converged dashpot forces, velocities, stage DOFs
+};
+
+// One step as the linearization sees it: the memory before and after, and
+// the stages between.
+struct StepView {
+  const rtb_params *p;
+  double dt;
+  double xb_old, xb_new;      // bushing displacements
+  double vx_old, vx_new;      // input velocity estimates (inertia)
+  double z_old, z_new;        // Maxwell branch
+  double xbmax_old;           // Mullins memory before the step
+  const double *y_new;        // cell DOFs after the step
+  StageView st[2];
+};
+
+// Everything the adjoint needs from one forward run, stored compactly: per
+// step 4 scalars + y + per stage (h, f, v, y).
 struct Trajectory {
-  std::vector<rtb_state> states;       // state after each drive step (0 = initial)
-  std::vector<rtb_stage> stages;       // stages per step (stride = n_stages)
   std::vector<double> force;           // model force at each drive step
-  int n_stages = 1;
+  int n_stages = 1, cells = 0;
   int first_sample = 0;
   long newton_iterations = 0;
   int not_converged = 0;               // steps reporting RTB_NOT_CONVERGED
+  std::vector<double> data;            // empty without trace
+  size_t stride() const { return 4 + cells + n_stages * (1 + 3 * (size_t)cells); }
+  StepView step(const rtb_params &p, const DriveGrid &g, size_t i) const;
 };
 
 // Run the stepper over the drive grid. keep_trace=false stores forces only.

@@ -29,22 +29,33 @@ extern "C" rtb_status rtb_chain_advance(const rtb_params *p, const rtb_settings 
                                         const rtb_state *s, double xb_new, double dt,
                                         rtb_stage st[2]) {
   const int n = p->cells;
-  if (rtb_integrator_stages(p) == 1) {
+  /* Warm start: velocities extrapolated linearly in time from the last two
+   * step ends (the converged result does not depend on it). */
+  double guess[RTB_MAX_CELLS];
+  const int ns = rtb_integrator_stages(p);
+  const double lead = ns == 1 ? dt : RTB_SDIRK_GAMMA * dt;
+  const double w = s->dt_prev > 0.0 ? fmin(lead / s->dt_prev, 1.0) : 0.0;
+  for (int k = 0; k < n; ++k) guess[k] = s->v[k] + w * (s->v[k] - s->v_prev[k]);
+  if (ns == 1) {
     st[0].h = dt;
     st[0].b1 = p->Kpa * xb_new;
     memcpy(st[0].c, s->y, sizeof(double) * n);
-    return rtb_stage_solve(p, set, s->v, &st[0]);
+    return rtb_stage_solve(p, set, guess, &st[0]);
   }
   const double g = RTB_SDIRK_GAMMA;
   st[0].h = g * dt;
   st[0].b1 = p->Kpa * (s->xb + g * (xb_new - s->xb));
   memcpy(st[0].c, s->y, sizeof(double) * n);
-  rtb_status a = rtb_stage_solve(p, set, s->v, &st[0]);
+  rtb_status a = rtb_stage_solve(p, set, guess, &st[0]);
   if (a < 0) return a;
   st[1].h = g * dt;
   st[1].b1 = p->Kpa * xb_new;
-  for (int k = 0; k < n; ++k) st[1].c[k] = s->y[k] + (1.0 - g) * dt * st[0].v[k];
-  return worse(a, rtb_stage_solve(p, set, st[0].v, &st[1]));
+  for (int k = 0; k < n; ++k) {
+    st[1].c[k] = s->y[k] + (1.0 - g) * dt * st[0].v[k];
+    /* from (t_n, v_n) and (t_n + g dt, v1) to t_n + dt */
+    guess[k] = st[0].v[k] + (1.0 - g) / g * (st[0].v[k] - s->v[k]);
+  }
+  return worse(a, rtb_stage_solve(p, set, guess, &st[1]));
 }
 
 /* Tangent of one converged stage: (I + h D K) dy = dc + h D e1 db1. */
@@ -234,7 +245,9 @@ extern "C" rtb_status rtb_step_detailed(const rtb_state *s, const rtb_params *p,
   memcpy(next.y, r.y, sizeof(double) * n);
   if (p->model == RTB_MODEL_RT) {
     const rtb_stage &last = r.st[rtb_integrator_stages(p) - 1];
+    memcpy(next.v_prev, s->v, sizeof(double) * n);
     memcpy(next.v, last.v, sizeof(double) * n);
+    next.dt_prev = dt;
   }
   next.z_maxwell = r.z;
   next.xb_max = fmax(s->xb_max, fabs(xb));

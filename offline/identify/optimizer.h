@@ -1,0 +1,46 @@
+// optimizer.h -- the two minimizers of section 5.3, on unconstrained
+// coordinates theta (param_transform.h):
+//  * minimize_bfgs: line-search quasi-Newton (BFGS, Wolfe line search), one
+//    forward + one adjoint solve per evaluation (Nocedal & Wright, ch. 6);
+//  * minimize_trust_region: Gauss-Newton trust region (Levenberg-Marquardt
+//    with Moré's scaling), with the exact tangent Jacobian of the discrete
+//    stepper; its gradient J^T r is the adjoint gradient (checked in tests).
+#ifndef RTB_OFFLINE_OPTIMIZER_H
+#define RTB_OFFLINE_OPTIMIZER_H
+
+#include <Eigen/Dense>
+#include <functional>
+#include <string>
+
+namespace rtb {
+
+struct Objective {
+  // f(theta) and, if grad != nullptr, its gradient (adjoint).
+  std::function<double(const Eigen::VectorXd &, Eigen::VectorXd *)> value_grad;
+  // Residual vector with f = 1/2 |r|^2 and, if jac != nullptr, dr/dtheta.
+  std::function<void(const Eigen::VectorXd &, Eigen::VectorXd &, Eigen::MatrixXd *)> residuals;
+};
+
+struct OptOptions {
+  int max_iter = 200;
+  double ftol = 1e-13;   // stop when the relative decrease of f is below
+  double xtol = 1e-10;   // stop when |step| is below (theta units ~ relative)
+  std::function<void(int iter, double f, double gnorm)> progress;  // may be empty
+};
+
+struct OptResult {
+  Eigen::VectorXd theta;
+  double f = 0.0;
+  int iterations = 0;
+  int evaluations = 0;   // f (+gradient or Jacobian) evaluations
+  bool converged = false;
+  std::string message;
+};
+
+OptResult minimize_bfgs(const Objective &obj, const Eigen::VectorXd &theta0, const OptOptions &opt);
+OptResult minimize_trust_region(const Objective &obj, const Eigen::VectorXd &theta0,
+                                const OptOptions &opt);
+
+}  // namespace rtb
+
+#endif

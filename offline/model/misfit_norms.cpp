@@ -1,0 +1,70 @@
+// misfit_norms.cpp -- see misfit_norms.h (eq. (27) of the paper).
+#include "model/misfit_norms.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace rtb {
+
+namespace {
+double ratio_sqrt(double num, double den) {
+  if (den > 0.0) return std::sqrt(num / den);
+  return num > 0.0 ? std::numeric_limits<double>::infinity() : 0.0;
+}
+}  // namespace
+
+double MisfitNorms::relative_error() const { return ratio_sqrt(J, J0); }
+
+double MisfitNorms::nrmse_percent() const {
+  if (range > 0.0) return 100.0 * rms / range;
+  return rms > 0.0 ? std::numeric_limits<double>::infinity() : 0.0;
+}
+
+MisfitNorms misfit_norms(const std::vector<double> &t, const std::vector<double> &F_model,
+                         const std::vector<double> &F_exp) {
+  const size_t n = t.size();
+  if (F_model.size() != n || F_exp.size() != n)
+    throw std::invalid_argument("misfit_norms: time, model and measured force differ in length");
+  if (n < 2) throw std::invalid_argument("misfit_norms: need at least 2 samples");
+  MisfitNorms m;
+  m.samples = n;
+  double sum_e2 = 0.0;
+  double lo = F_exp[0], hi = F_exp[0];
+  double e_prev = F_model[0] - F_exp[0];
+  double f_prev = F_exp[0];
+  sum_e2 = e_prev * e_prev;
+  for (size_t i = 1; i < n; ++i) {
+    const double dt = t[i] - t[i - 1];
+    if (!(dt > 0.0)) throw std::invalid_argument("misfit_norms: time does not increase");
+    const double e = F_model[i] - F_exp[i];
+    const double f = F_exp[i];
+    // 1/2 * trapezoid of the squared integrand: 1/2 * dt * (a^2 + b^2) / 2.
+    m.J += 0.25 * dt * (e_prev * e_prev + e * e);
+    m.J0 += 0.25 * dt * (f_prev * f_prev + f * f);
+    sum_e2 += e * e;
+    lo = std::min(lo, f);
+    hi = std::max(hi, f);
+    e_prev = e;
+    f_prev = f;
+  }
+  m.rms = std::sqrt(sum_e2 / (double)n);
+  m.range = hi - lo;
+  return m;
+}
+
+double combined_relative_error(const std::vector<MisfitNorms> &parts,
+                               const std::vector<double> &weights) {
+  if (!weights.empty() && weights.size() != parts.size())
+    throw std::invalid_argument("combined_relative_error: one weight per part expected");
+  double J = 0.0, J0 = 0.0;
+  for (size_t i = 0; i < parts.size(); ++i) {
+    const double w = weights.empty() ? 1.0 : weights[i];
+    J += w * parts[i].J;
+    J0 += w * parts[i].J0;
+  }
+  return ratio_sqrt(J, J0);
+}
+
+}  // namespace rtb
