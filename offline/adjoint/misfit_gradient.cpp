@@ -78,10 +78,8 @@ MisfitValue misfit(const rtb_params &p, const std::vector<Record> &recs,
     StateDual bar, bar_prev;
     bar.clear();
     for (size_t i = g.x.size() - 1; i >= 1; --i) {
-      const StepView v = tr.step(p, g, i);
-      force_vjp(v, Fbar[i], bar, pbar);
       bar_prev.clear();
-      chain_vjp(v, bar, bar_prev, pbar);
+      step_vjp(tr.step(p, g, i), bar, Fbar[i], bar_prev, pbar);
       bar = bar_prev;
     }
     ++m.adjoint_solves;
@@ -111,10 +109,8 @@ void residual_jacobian(const rtb_params &p, const std::vector<Record> &recs,
       d.clear();
       std::vector<double> dF(g.x.size(), 0.0);
       for (size_t i = 1; i < g.x.size(); ++i) {
-        const StepView v = tr.step(p, g, i);
         dn.clear();
-        chain_jvp(v, d, dp, dn);
-        dF[i] = force_jvp(v, dn, dp);
+        dF[i] = step_jvp(tr.step(p, g, i), d, dp, dn);
         d = dn;
       }
       for (size_t j = 0; j < rec.F.size(); ++j)
@@ -137,58 +133,57 @@ double dot_product_test(const rtb_params &p, const Record &rec, const SimOptions
   const int N = p.cells;
   std::mt19937_64 rng(seed);
   std::normal_distribution<double> nd(0.0, 1.0);
-  // Scale parameter directions to the parameters so every term matters.
+  // Parameter directions scaled to the parameters so every term matters.
   double dp[P_COUNT] = {0}, pbar[P_COUNT] = {0};
   for (int i = 0; i < P_COUNT; ++i) {
     const double v = param_get(p, ParamId(i));
-    if (v != 0.0 || i == P_maxwell_k) dp[i] = nd(rng) * (v != 0.0 ? std::fabs(v) : 1.0) * 1e-3;
+    dp[i] = nd(rng) * (v != 0.0 ? std::fabs(v) : 1.0) * 1e-3;
   }
   if (!(p.maxwell_tau > 0.0)) dp[P_maxwell_tau] = 0.0;
+  // Random sources a_i on every state entry and random cotangents.
+  auto fill = [&](StateDual &s, double scale) {
+    s.clear();
+    for (int k = 0; k < N; ++k) s.y[k] = nd(rng) * scale;
+    s.z = nd(rng) * scale;
+    s.xb = p.backlash > 0.0 ? nd(rng) * scale : 0.0;  // xb = x (data) otherwise
+    s.m = nd(rng) * scale;
+  };
+  auto dot = [&](const StateDual &a, const StateDual &b) {
+    double s = a.z * b.z + a.xb * b.xb + a.m * b.m;
+    for (int k = 0; k < N; ++k) s += a.y[k] * b.y[k];
+    return s;
+  };
   std::vector<StateDual> a(n), ybar(n), abar(n);
   std::vector<double> Fbar(n);
   for (size_t i = 0; i < n; ++i) {
-    a[i].clear();
-    ybar[i].clear();
-    for (int k = 0; k < N; ++k) {
-      a[i].y[k] = nd(rng) * 1e-3;
-      ybar[i].y[k] = nd(rng);
-    }
-    a[i].z = nd(rng) * 1e-3;
-    ybar[i].z = nd(rng);
+    fill(a[i], 1e-3);
+    fill(ybar[i], 1.0);
     Fbar[i] = nd(rng);
   }
-  // Tangent sweep: d_i = M_i d_{i-1} + (dp terms) + a_i, then dF_i.
-  double lhs = 0.0;
+  // Tangent sweep: d_i = L_i(d_{i-1}, dp) + a_i with output dF_i.
   StateDual d = a[0], dn;
-  for (int k = 0; k < N; ++k) lhs += ybar[0].y[k] * d.y[k];
-  lhs += ybar[0].z * d.z;
+  double lhs = dot(ybar[0], d);
   for (size_t i = 1; i < n; ++i) {
-    const StepView v = tr.step(p, g, i);
     dn.clear();
-    chain_jvp(v, d, dp, dn);
+    lhs += Fbar[i] * step_jvp(tr.step(p, g, i), d, dp, dn);
+    dn.xb += a[i].xb;
     for (int k = 0; k < N; ++k) dn.y[k] += a[i].y[k];
     dn.z += a[i].z;
-    lhs += Fbar[i] * force_jvp(v, dn, dp);
-    for (int k = 0; k < N; ++k) lhs += ybar[i].y[k] * dn.y[k];
-    lhs += ybar[i].z * dn.z;
+    dn.m += a[i].m;
+    lhs += dot(ybar[i], dn);
     d = dn;
   }
   // Adjoint sweep.
   StateDual bar = ybar[n - 1], prev;
   for (size_t i = n - 1; i >= 1; --i) {
-    const StepView v = tr.step(p, g, i);
-    force_vjp(v, Fbar[i], bar, pbar);
     abar[i] = bar;
     prev = ybar[i - 1];
-    chain_vjp(v, bar, prev, pbar);
+    step_vjp(tr.step(p, g, i), bar, Fbar[i], prev, pbar);
     bar = prev;
   }
   abar[0] = bar;
   double rhs = 0.0;
-  for (size_t i = 0; i < n; ++i) {
-    for (int k = 0; k < N; ++k) rhs += abar[i].y[k] * a[i].y[k];
-    rhs += abar[i].z * a[i].z;
-  }
+  for (size_t i = 0; i < n; ++i) rhs += dot(abar[i], a[i]);
   for (int i = 0; i < P_COUNT; ++i) rhs += pbar[i] * dp[i];
   return std::fabs(lhs - rhs) / std::fmax(std::fabs(lhs), std::fabs(rhs));
 }

@@ -7,9 +7,12 @@
 // with D = diag(phi'(f)). phi' is finite everywhere (0 at f = 0): no
 // smoothing is needed, unlike the continuous adjoint of eq. (12).
 //
-// A step = chain advance (the stages) followed by the force map (eq. (11)
-// plus extensions). They are linearized separately so that the trajectory
-// code can inject state sources between them (dot-product test, eq. (15)).
+// A step is the composition
+//   xb_new = B(state_old, p)            clearance: x -+ g/2 in contact, or the
+//                                       root of F_bushing(xb) = 0 when free
+//   state_new = C(state_old, p, xb_new) stages, Maxwell branch, Mullins memory
+//   F = Fo(state_old, state_new, p)     eq. (11) + extensions + inertia
+// and both functions below linearize all of it.
 #ifndef RTB_OFFLINE_STEP_LINEARIZATION_H
 #define RTB_OFFLINE_STEP_LINEARIZATION_H
 
@@ -22,18 +25,17 @@ namespace rtb {
 struct StateDual {
   double y[RTB_MAX_CELLS];  // cell DOFs
   double z;                 // Maxwell branch displacement
+  double xb;                // bushing displacement (moves only with a clearance)
+  double m;                 // Mullins memory max |xb|
   void clear();
 };
 
-// Chain + Maxwell state: d_new = M d_old + (d/dp) dp.
-void chain_jvp(const StepView &v, const StateDual &d_old, const double *dp, StateDual &d_new);
-// Transpose: accumulates into bar_old (which is NOT cleared) and pbar.
-void chain_vjp(const StepView &v, const StateDual &bar_new, StateDual &bar_old, double *pbar);
-
-// Force of the step from the new state: dF = dF/dstate d_new + dF/dp dp.
-double force_jvp(const StepView &v, const StateDual &d_new, const double *dp);
-// Transpose: bar_new += Fbar dF/dstate, pbar += Fbar dF/dp.
-void force_vjp(const StepView &v, double Fbar, StateDual &bar_new, double *pbar);
+// d_new and the returned dF from d_old and the parameter direction dp.
+double step_jvp(const StepView &v, const StateDual &d_old, const double *dp, StateDual &d_new);
+// Transpose: given the cotangents of the new state and of F, accumulate into
+// bar_old (not cleared) and pbar.
+void step_vjp(const StepView &v, const StateDual &bar_new, double Fbar, StateDual &bar_old,
+              double *pbar);
 
 }  // namespace rtb
 

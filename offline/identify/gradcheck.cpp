@@ -10,7 +10,7 @@ GradcheckResult gradcheck(const rtb_params &p, const std::vector<Record> &recs,
   opt.sim.tol = 1e-15;  // resolve the discrete map to rounding level
   if (ids.empty())
     for (int i = 0; i < P_COUNT; ++i)
-      if (param_get(p, ParamId(i)) != 0.0 && i != P_backlash) ids.push_back(ParamId(i));
+      if (param_get(p, ParamId(i)) != 0.0) ids.push_back(ParamId(i));
   GradcheckResult out;
   const MisfitValue m = misfit(p, recs, opt, true);
   out.J = m.J;

@@ -84,6 +84,12 @@ StepView Trajectory::step(const rtb_params &p, const DriveGrid &g, size_t i) con
   v.vx_new = b[1];
   v.z_new = b[2];
   v.y_new = b + 4;
+  v.x_new = g.x[i];
+  v.contact = 2;
+  if (p.backlash > 0.0) {
+    const double lo = v.x_new - 0.5 * p.backlash, hi = v.x_new + 0.5 * p.backlash;
+    v.contact = v.xb_new == lo ? 1 : (v.xb_new == hi ? -1 : 0);  // same expressions as step.cpp
+  }
   const double *q = b + 4 + cells;
   for (int k = 0; k < n_stages; ++k, q += 1 + 3 * cells)
     v.st[k] = StageView{q[0], q + 1, q + 1 + cells, q + 1 + 2 * cells};

@@ -35,6 +35,9 @@ struct StepView {
   double vx_old, vx_new;      // input velocity estimates (inertia)
   double z_old, z_new;        // Maxwell branch
   double xbmax_old;           // Mullins memory before the step
+  double x_new;               // input displacement
+  int contact;                // backlash: +1 / -1 in contact at x -/+ g/2, 0 free,
+                              // 2 no clearance (xb = x)
   const double *y_new;        // cell DOFs after the step
   StageView st[2];
 };

@@ -1,0 +1,47 @@
+// fit_common.h -- options and outputs shared by the fitting subcommands
+// (identify, diagnose): data files, start point, method, masking, JSON.
+#ifndef RTB_OFFLINE_CLI_FIT_COMMON_H
+#define RTB_OFFLINE_CLI_FIT_COMMON_H
+
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "cli/cli.h"
+#include "identify/identify.h"
+#include "identify/sts_init.h"
+#include "io/header_writer.h"
+
+namespace rtb {
+namespace cli {
+
+struct FitSetup {
+  std::vector<Record> recs;
+  rtb_params start{};
+  std::string init = "sts";     // "sts" or a JSON path
+  double alpha0 = 0.2;
+  bool sts_used = false;
+  LoopFeatures features;
+  StsParams sts;
+  std::string sts_note;
+  IdentifyOptions opt;
+  double reg_weight = 0.0;
+};
+
+// The common options: --data, --cells, --method, --init, --alpha0,
+// --fit-from, --ramp-time, --free, --reg-weight, --max-iter, --quiet,
+// plus `extra`.
+std::vector<OptionSpec> fit_option_specs(std::vector<OptionSpec> extra);
+// Reads the files and builds the start point (throws InputError/UsageError).
+FitSetup parse_fit_setup(const Args &a);
+IdentifyResult run_fit(const FitSetup &fs, bool quiet);
+void print_fit_summary(const IdentifyResult &r, const FitSetup &fs);
+nlohmann::ordered_json fit_result_json(const IdentifyResult &r, const FitSetup &fs);
+nlohmann::ordered_json uncertainty_json(const Uncertainty &u);
+HeaderInfo header_info_for(const IdentifyResult &r, const FitSetup &fs, const std::string &name);
+std::vector<ParamId> parse_param_list(const std::string &csv);
+
+}  // namespace cli
+}  // namespace rtb
+
+#endif

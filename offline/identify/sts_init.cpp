@@ -1,0 +1,149 @@
+// sts_init.cpp -- see sts_init.h.
+#include "identify/sts_init.h"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+
+namespace rtb {
+
+namespace {
+
+// Reversal points of x with a dead band (a turn counts only after x has moved
+// back by `band`), so noise on the displacement cannot fake a reversal.
+std::vector<size_t> reversals(const std::vector<double> &x, size_t from, double band) {
+  std::vector<size_t> out;
+  if (x.size() < from + 3) return out;
+  int dir = 0;
+  size_t ext = from;
+  for (size_t i = from + 1; i < x.size(); ++i) {
+    if (dir >= 0 && x[i] > x[ext]) { ext = i; if (dir == 0 && x[i] - x[from] > band) dir = 1; }
+    else if (dir <= 0 && x[i] < x[ext]) { ext = i; if (dir == 0 && x[from] - x[i] > band) dir = -1; }
+    if (dir == 1 && x[ext] - x[i] > band) { out.push_back(ext); dir = -1; ext = i; }
+    else if (dir == -1 && x[i] - x[ext] > band) { out.push_back(ext); dir = 1; ext = i; }
+  }
+  return out;
+}
+
+// Slope at x = x_rev of a least-squares quadratic through the points
+// (x_i - x_rev, F_i) for i in [a, b].
+double slope_at(const Record &r, size_t a, size_t b, double xrev) {
+  const Eigen::Index n = (Eigen::Index)(b - a + 1);
+  if (n < 4) return NAN;
+  Eigen::MatrixXd A(n, 3);
+  Eigen::VectorXd y(n);
+  for (Eigen::Index k = 0; k < n; ++k) {
+    const double u = r.x[a + k] - xrev;
+    A(k, 0) = 1.0;
+    A(k, 1) = u;
+    A(k, 2) = u * u;
+    y[k] = r.F[a + k];
+  }
+  return A.colPivHouseholderQr().solve(y)[1];
+}
+
+}  // namespace
+
+LoopFeatures detect_loop_features(const Record &rec, double fit_from, double window) {
+  size_t from = 0;
+  while (from < rec.t.size() && rec.t[from] < rec.t[0] + fit_from) ++from;
+  double xlo = INFINITY, xhi = -INFINITY;
+  for (size_t i = from; i < rec.x.size(); ++i) {
+    xlo = std::min(xlo, rec.x[i]);
+    xhi = std::max(xhi, rec.x[i]);
+  }
+  const std::vector<size_t> rv = reversals(rec.x, from, 0.1 * (xhi - xlo));
+  LoopFeatures f;
+  double sTg1 = 0, sTg2 = 0, sF = 0, sX = 0, sV = 0;
+  int nTg = 0;
+  // A complete cycle spans three consecutive reversals; each inner branch
+  // (between two reversals) gives Tg1 at its start and Tg2 at its end.
+  for (size_t k = 0; k + 2 < rv.size(); ++k) {
+    const size_t r0 = rv[k], r1 = rv[k + 1], r2 = rv[k + 2];
+    const double travel = std::fabs(rec.x[r1] - rec.x[r0]);
+    const double w = window * travel;
+    sX += 0.5 * travel;
+    sF += 0.5 * std::fabs(rec.F[r1] - rec.F[r0]);
+    double path = 0.0;
+    for (size_t i = r0 + 1; i <= r2; ++i) path += std::fabs(rec.x[i] - rec.x[i - 1]);
+    sV += path / (rec.t[r2] - rec.t[r0]);
+    ++f.cycles;
+    for (auto [a, b] : {std::pair<size_t, size_t>{r0, r1}, {r1, r2}}) {
+      size_t e = a;  // Tg1: first `w` of travel after reversal a
+      while (e < b && std::fabs(rec.x[e] - rec.x[a]) <= w) ++e;
+      size_t s = b;  // Tg2: last `w` of travel before reversal b
+      while (s > a && std::fabs(rec.x[b] - rec.x[s]) <= w) --s;
+      const double t1 = slope_at(rec, a, e, rec.x[a]), t2 = slope_at(rec, s, b, rec.x[b]);
+      if (std::isfinite(t1) && std::isfinite(t2)) {
+        sTg1 += t1;
+        sTg2 += t2;
+        ++nTg;
+      }
+    }
+  }
+  if (f.cycles == 0 || nTg == 0)
+    throw InputError(rec.path + ": no complete hysteresis cycle found for the STS initial values");
+  f.Tg1 = sTg1 / nTg;
+  f.Tg2 = sTg2 / nTg;
+  f.Xmax = sX / f.cycles;
+  f.Fmax = sF / f.cycles;
+  f.Ksec = f.Fmax / f.Xmax;
+  f.V0 = sV / f.cycles;
+  return f;
+}
+
+StsParams invert_sts(const LoopFeatures &f, int N) {
+  const double T1 = f.Tg1, T2 = f.Tg2, F = f.Fmax, X = f.Xmax;
+  const double den = 2.0 * F - (T1 + T2) * X;
+  StsParams s;
+  s.K0 = (F * (T1 + T2) - 2.0 * T1 * T2 * X) / den;                           // eq. (21)
+  s.Kpa = (T1 - T2) * (F - T1 * X) / den;                                      // eq. (22)
+  s.Kr = -(N - 1) * (T1 - T2) * (F - T1 * X) * (F - T2 * X) / (den * den);    // eq. (23)
+  s.Ff = (F - T1 * X) * (F - T2 * X) / (N * den);                              // eq. (24)
+  return s;
+}
+
+rtb_params rt_start_from_sts(const StsParams &s, const LoopFeatures &f, int cells, double alpha0,
+                             std::string *note) {
+  rtb_params p;
+  rtb_params_default(&p, RTB_MODEL_RT);
+  p.cells = cells;
+  auto pos = [&](double v, double fallback, const char *name) {
+    if (std::isfinite(v) && v > 0.0) return v;
+    if (note) *note += std::string(name) + " from eq. (21)-(24) not positive; ";
+    return fallback;
+  };
+  p.K0 = std::isfinite(s.K0) && s.K0 >= 0.0 ? s.K0 : 0.5 * f.Ksec;  // eq. (25)
+  p.Kpa = pos(s.Kpa, std::fmax(f.Tg1 - p.K0, 0.5 * f.Ksec), "Kpa");
+  p.Kr = pos(s.Kr, cells * p.Kpa, "Kr");
+  const double Ff = pos(s.Ff, 0.1 * f.Fmax / cells, "Ff");
+  p.alpha = alpha0;
+  p.C0 = Ff / std::pow(std::fmax(f.V0, 1e-300), alpha0);  // eq. (26)
+  return p;
+}
+
+rtb_params sts_initial_guess(const std::vector<Record> &recs, int cells, double alpha0,
+                             double fit_from, LoopFeatures *feat, StsParams *sts,
+                             std::string *note) {
+  // Use the record whose stabilized loop is largest (the STS inversion assumes
+  // N-1 cells sliding, i.e. a large amplitude).
+  LoopFeatures best;
+  bool have = false;
+  std::string why;
+  for (const Record &r : recs) {
+    try {
+      const LoopFeatures f = detect_loop_features(r, fit_from);
+      if (!have || f.Xmax > best.Xmax) best = f;
+      have = true;
+    } catch (const InputError &e) {
+      why = e.what();
+    }
+  }
+  if (!have) throw InputError("STS initial values: " + why);
+  const StsParams s = invert_sts(best, cells);
+  if (feat) *feat = best;
+  if (sts) *sts = s;
+  return rt_start_from_sts(s, best, cells, alpha0, note);
+}
+
+}  // namespace rtb

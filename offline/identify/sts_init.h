@@ -1,0 +1,49 @@
+// sts_init.h -- initial values from the STS model (section 5.4): measure
+// the hysteresis-loop features Tg1, Tg2, Fmax, Xmax on the stabilized cycles
+// of a record, invert eq. (21)-(24) for the STS parameters and map them to RT
+// starting values with eq. (25)-(26).
+#ifndef RTB_OFFLINE_STS_INIT_H
+#define RTB_OFFLINE_STS_INIT_H
+
+#include <string>
+#include <vector>
+
+#include "rtb_offline.h"
+
+namespace rtb {
+
+struct LoopFeatures {
+  double Tg1 = 0, Tg2 = 0;   // tangent slopes just after / just before a cusp
+  double Fmax = 0, Xmax = 0; // half peak-to-peak force and displacement
+  double Ksec = 0;           // Fmax / Xmax, eq. (17)
+  double V0 = 0;             // mean |velocity| over the cycles [length/time]
+  int cycles = 0;            // complete cycles averaged
+};
+
+// Features averaged over every complete cycle after t0 + fit_from (both
+// cusps of each). Slopes come from quadratic least-squares fits over a window
+// of `window` (fraction of the peak-to-peak travel) next to each reversal, so
+// force noise of a few percent averages out. Throws InputError when the
+// record holds no complete cycle.
+LoopFeatures detect_loop_features(const Record &rec, double fit_from = 0.0, double window = 0.08);
+
+struct StsParams {
+  double K0 = 0, Kpa = 0, Kr = 0, Ff = 0;
+};
+// eq. (21)-(24) for N cells.
+StsParams invert_sts(const LoopFeatures &f, int cells);
+
+// eq. (25)-(26): K0, Kpa, Kr from STS, C0 = Ff / V0^alpha0. Non-physical
+// inversions (a negative stiffness from inconsistent features) are clamped
+// to a positive fraction of the secant stiffness and reported in `note`.
+rtb_params rt_start_from_sts(const StsParams &s, const LoopFeatures &f, int cells, double alpha0,
+                             std::string *note = nullptr);
+
+// Convenience: features averaged over records, inversion, mapping.
+rtb_params sts_initial_guess(const std::vector<Record> &recs, int cells, double alpha0,
+                             double fit_from, LoopFeatures *feat = nullptr,
+                             StsParams *sts = nullptr, std::string *note = nullptr);
+
+}  // namespace rtb
+
+#endif
