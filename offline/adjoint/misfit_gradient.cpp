@@ -90,38 +90,50 @@ MisfitValue misfit(const rtb_params &p, const std::vector<Record> &recs,
   return m;
 }
 
+void record_sensitivities(const rtb_params &p, const Record &rec, const SimOptions &sim,
+                          const std::vector<ParamId> &free, Eigen::VectorXd &F,
+                          Eigen::MatrixXd *jac) {
+  const DriveGrid g = make_drive_grid(rec, sim);
+  const Trajectory tr = run_forward(p, g, jac != nullptr, sim.tol);
+  const Eigen::Index n = (Eigen::Index)rec.F.size();
+  F = Eigen::Map<const Eigen::VectorXd>(tr.force.data() + g.first_sample, n);
+  if (!jac) return;
+  jac->setZero(n, (Eigen::Index)free.size());
+  StateDual d, dn;
+  for (size_t c = 0; c < free.size(); ++c) {
+    double dp[P_COUNT] = {0};
+    dp[free[c]] = 1.0;
+    d.clear();
+    for (size_t i = 1; i < g.x.size(); ++i) {
+      dn.clear();
+      const double dF = step_jvp(tr.step(p, g, i), d, dp, dn);
+      if ((int)i >= g.first_sample) (*jac)((Eigen::Index)i - g.first_sample, (Eigen::Index)c) = dF;
+      d = dn;
+    }
+  }
+}
+
 void residual_jacobian(const rtb_params &p, const std::vector<Record> &recs,
                        const MisfitOptions &opt, const std::vector<ParamId> &free,
                        Eigen::VectorXd &r, Eigen::MatrixXd *jac) {
   std::vector<double> rv;
-  std::vector<std::vector<double>> cols(free.size());
+  std::vector<Eigen::RowVectorXd> rows;
   for (const Record &rec : recs) {
-    const DriveGrid g = make_drive_grid(rec, opt.sim);
-    const Trajectory tr = run_forward(p, g, jac != nullptr, opt.sim.tol);
+    Eigen::VectorXd F;
+    Eigen::MatrixXd J;
+    record_sensitivities(p, rec, opt.sim, free, F, jac ? &J : nullptr);
     const std::vector<double> w = quadrature_weights(rec, opt.fit_from);
-    for (size_t j = 0; j < rec.F.size(); ++j)
-      if (w[j] > 0.0) rv.push_back(std::sqrt(w[j]) * (tr.force[g.first_sample + j] - rec.F[j]));
-    if (!jac) continue;
-    for (size_t c = 0; c < free.size(); ++c) {
-      double dp[P_COUNT] = {0};
-      dp[free[c]] = 1.0;
-      StateDual d, dn;
-      d.clear();
-      std::vector<double> dF(g.x.size(), 0.0);
-      for (size_t i = 1; i < g.x.size(); ++i) {
-        dn.clear();
-        dF[i] = step_jvp(tr.step(p, g, i), d, dp, dn);
-        d = dn;
-      }
-      for (size_t j = 0; j < rec.F.size(); ++j)
-        if (w[j] > 0.0) cols[c].push_back(std::sqrt(w[j]) * dF[g.first_sample + j]);
+    for (size_t j = 0; j < rec.F.size(); ++j) {
+      if (!(w[j] > 0.0)) continue;
+      const double s = std::sqrt(w[j]);
+      rv.push_back(s * (F[(Eigen::Index)j] - rec.F[j]));
+      if (jac) rows.push_back(s * J.row((Eigen::Index)j));
     }
   }
   r = Eigen::Map<Eigen::VectorXd>(rv.data(), (Eigen::Index)rv.size());
   if (jac) {
     jac->resize((Eigen::Index)rv.size(), (Eigen::Index)free.size());
-    for (size_t c = 0; c < free.size(); ++c)
-      jac->col((Eigen::Index)c) = Eigen::Map<Eigen::VectorXd>(cols[c].data(), (Eigen::Index)rv.size());
+    for (size_t k = 0; k < rows.size(); ++k) jac->row((Eigen::Index)k) = rows[k];
   }
 }
 

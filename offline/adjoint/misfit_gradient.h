@@ -38,6 +38,12 @@ struct MisfitValue {
 MisfitValue misfit(const rtb_params &p, const std::vector<Record> &recs,
                    const MisfitOptions &opt, bool want_grad);
 
+// Model force at the record's samples and (if jac) its sensitivities
+// dF_j/dp for the parameters in `free`, by tangent sweeps (exact).
+void record_sensitivities(const rtb_params &p, const Record &rec, const SimOptions &sim,
+                          const std::vector<ParamId> &free, Eigen::VectorXd &F,
+                          Eigen::MatrixXd *jac);
+
 // Weighted residuals r_j = sqrt(omega_j) (F_j - F_exp_j), stacked over records
 // (masked samples dropped), and their Jacobian w.r.t. `free` by tangent sweeps.
 void residual_jacobian(const rtb_params &p, const std::vector<Record> &recs,

@@ -116,34 +116,42 @@ Uncertainty estimate_uncertainty(const rtb_params &p, const std::vector<Record> 
   Eigen::VectorXd r;
   Eigen::MatrixXd Jw;
   residual_jacobian(p, recs, opt, ids, r, &Jw);
-  // Rows carry sqrt(w_j); recover w_j to form the white-noise sandwich
-  //   Cov = s^2 A^-1 B A^-1,  A = sum w J_j J_j^T,  B = sum w^2 J_j J_j^T.
   std::vector<double> w;
   for (const Record &rec : recs)
     for (double v : quadrature_weights(rec, opt.fit_from))
       if (v > 0.0) w.push_back(v);
-  const Eigen::Index m = r.size(), n = (Eigen::Index)ids.size();
-  if (m <= n || (Eigen::Index)w.size() != m) return u;
-  Eigen::VectorXd wv = Eigen::Map<Eigen::VectorXd>(w.data(), m);
+  if ((Eigen::Index)w.size() != r.size()) return u;
+  const Eigen::Map<Eigen::VectorXd> wv(w.data(), r.size());
+  u.valid = sandwich_covariance(r, Jw, wv, u.stddev, &u.correlation, &u.noise_sigma);
+  return u;
+}
+
+bool sandwich_covariance(const Eigen::VectorXd &r, const Eigen::MatrixXd &Jw,
+                         const Eigen::VectorXd &w, Eigen::VectorXd &stddev,
+                         Eigen::MatrixXd *correlation, double *noise_sigma) {
+  // White noise of variance s^2 per sample, weights w_j (quadrature):
+  //   Cov = s^2 A^-1 B A^-1,  A = sum w J_j J_j^T,  B = sum w^2 J_j J_j^T.
+  const Eigen::Index m = r.size(), n = Jw.cols();
+  if (m <= n || n == 0) return false;
   double ss = 0.0;
-  for (Eigen::Index j = 0; j < m; ++j) ss += r[j] * r[j] / wv[j];
+  for (Eigen::Index j = 0; j < m; ++j) ss += r[j] * r[j] / w[j];
   const double s2 = ss / double(m - n);
-  u.noise_sigma = std::sqrt(s2);
+  if (noise_sigma) *noise_sigma = std::sqrt(s2);
   // Scale columns to unit size so the inversion is well conditioned.
-  Eigen::VectorXd cs = Jw.colwise().norm().transpose().cwiseMax(1e-300);
+  const Eigen::VectorXd cs = Jw.colwise().norm().transpose().cwiseMax(1e-300);
   const Eigen::MatrixXd Js = Jw * cs.cwiseInverse().asDiagonal();
   const Eigen::MatrixXd A = Js.transpose() * Js;
-  const Eigen::MatrixXd B = Js.transpose() * wv.asDiagonal() * Js;
+  const Eigen::MatrixXd B = Js.transpose() * w.asDiagonal() * Js;
   Eigen::JacobiSVD<Eigen::MatrixXd> svd(A, Eigen::ComputeFullU | Eigen::ComputeFullV);
   const Eigen::VectorXd sv = svd.singularValues();
-  if (sv[n - 1] <= 1e-14 * sv[0]) return u;
+  if (!(sv[n - 1] > 1e-14 * sv[0])) return false;
   const Eigen::MatrixXd Ai = svd.solve(Eigen::MatrixXd::Identity(n, n));
   Eigen::MatrixXd C = s2 * Ai * B * Ai;
   C = cs.cwiseInverse().asDiagonal() * C * cs.cwiseInverse().asDiagonal();
-  u.stddev = C.diagonal().cwiseSqrt();
-  u.correlation = u.stddev.cwiseInverse().asDiagonal() * C * u.stddev.cwiseInverse().asDiagonal();
-  u.valid = true;
-  return u;
+  stddev = C.diagonal().cwiseSqrt();
+  if (correlation)
+    *correlation = stddev.cwiseInverse().asDiagonal() * C * stddev.cwiseInverse().asDiagonal();
+  return true;
 }
 
 }  // namespace rtb

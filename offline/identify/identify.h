@@ -55,6 +55,12 @@ IdentifyResult identify(const std::vector<Record> &recs, const rtb_params &start
 Uncertainty estimate_uncertainty(const rtb_params &p, const std::vector<Record> &recs,
                                  const MisfitOptions &opt, const std::vector<ParamId> &ids);
 
+// The covariance core of estimate_uncertainty: residuals r_j = sqrt(w_j) e_j
+// and rows sqrt(w_j) dF_j/dp. Returns false if the information is singular.
+bool sandwich_covariance(const Eigen::VectorXd &r, const Eigen::MatrixXd &Jw,
+                         const Eigen::VectorXd &w, Eigen::VectorXd &stddev,
+                         Eigen::MatrixXd *correlation, double *noise_sigma = nullptr);
+
 }  // namespace rtb
 
 #endif

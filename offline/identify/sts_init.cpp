@@ -25,21 +25,24 @@ std::vector<size_t> reversals(const std::vector<double> &x, size_t from, double 
   return out;
 }
 
-// Slope at x = x_rev of a least-squares quadratic through the points
-// (x_i - x_rev, F_i) for i in [a, b].
-double slope_at(const Record &r, size_t a, size_t b, double xrev) {
+// Least-squares polynomial through (x_i - x_rev, F_i), i in [a, b]: returns
+// its value and slope at x = x_rev.
+bool fit_at(const Record &r, size_t a, size_t b, double xrev, int degree, double &F0,
+            double &slope) {
   const Eigen::Index n = (Eigen::Index)(b - a + 1);
-  if (n < 4) return NAN;
-  Eigen::MatrixXd A(n, 3);
+  if (n < 2 * (degree + 1)) return false;
+  Eigen::MatrixXd A(n, degree + 1);
   Eigen::VectorXd y(n);
   for (Eigen::Index k = 0; k < n; ++k) {
     const double u = r.x[a + k] - xrev;
-    A(k, 0) = 1.0;
-    A(k, 1) = u;
-    A(k, 2) = u * u;
+    double pw = 1.0;
+    for (int d = 0; d <= degree; ++d, pw *= u) A(k, d) = pw;
     y[k] = r.F[a + k];
   }
-  return A.colPivHouseholderQr().solve(y)[1];
+  const Eigen::VectorXd c = A.colPivHouseholderQr().solve(y);
+  F0 = c[0];
+  slope = c[1];
+  return std::isfinite(F0) && std::isfinite(slope);
 }
 
 }  // namespace
@@ -57,29 +60,41 @@ LoopFeatures detect_loop_features(const Record &rec, double fit_from, double win
   double sTg1 = 0, sTg2 = 0, sF = 0, sX = 0, sV = 0;
   int nTg = 0;
   // A complete cycle spans three consecutive reversals; each inner branch
-  // (between two reversals) gives Tg1 at its start and Tg2 at its end.
+  // (between two reversals) gives Tg1 at its start and Tg2 at its end. Tg1
+  // comes from a quadratic over `window` of the travel (the tangent turns
+  // fast after a cusp); Tg2 from a quadratic over twice that (the approach
+  // to a cusp is nearly straight), whose value at the reversal also gives a
+  // denoised peak force.
   for (size_t k = 0; k + 2 < rv.size(); ++k) {
     const size_t r0 = rv[k], r1 = rv[k + 1], r2 = rv[k + 2];
     const double travel = std::fabs(rec.x[r1] - rec.x[r0]);
-    const double w = window * travel;
-    sX += 0.5 * travel;
-    sF += 0.5 * std::fabs(rec.F[r1] - rec.F[r0]);
     double path = 0.0;
     for (size_t i = r0 + 1; i <= r2; ++i) path += std::fabs(rec.x[i] - rec.x[i - 1]);
     sV += path / (rec.t[r2] - rec.t[r0]);
-    ++f.cycles;
+    double Frev[2] = {0, 0};
+    bool ok = true;
+    int side = 0;
     for (auto [a, b] : {std::pair<size_t, size_t>{r0, r1}, {r1, r2}}) {
-      size_t e = a;  // Tg1: first `w` of travel after reversal a
-      while (e < b && std::fabs(rec.x[e] - rec.x[a]) <= w) ++e;
-      size_t s = b;  // Tg2: last `w` of travel before reversal b
-      while (s > a && std::fabs(rec.x[b] - rec.x[s]) <= w) --s;
-      const double t1 = slope_at(rec, a, e, rec.x[a]), t2 = slope_at(rec, s, b, rec.x[b]);
-      if (std::isfinite(t1) && std::isfinite(t2)) {
+      size_t e = a;  // Tg1: first window of travel after reversal a
+      while (e < b && std::fabs(rec.x[e] - rec.x[a]) <= window * travel) ++e;
+      size_t s = b;  // Tg2: last 2 windows of travel before reversal b
+      while (s > a && std::fabs(rec.x[b] - rec.x[s]) <= 2.0 * window * travel) --s;
+      double F1, t1, F2, t2;
+      if (fit_at(rec, a, e, rec.x[a], 2, F1, t1) && fit_at(rec, s, b, rec.x[b], 2, F2, t2)) {
         sTg1 += t1;
         sTg2 += t2;
         ++nTg;
+        Frev[side] = F2;
+      } else {
+        ok = false;
       }
+      ++side;
     }
+    if (!ok) continue;
+    // Half peak-to-peak between the reversal at r1 and the one at r2.
+    sX += 0.5 * std::fabs(rec.x[r2] - rec.x[r1]);
+    sF += 0.5 * std::fabs(Frev[1] - Frev[0]);
+    ++f.cycles;
   }
   if (f.cycles == 0 || nTg == 0)
     throw InputError(rec.path + ": no complete hysteresis cycle found for the STS initial values");
@@ -88,12 +103,15 @@ LoopFeatures detect_loop_features(const Record &rec, double fit_from, double win
   f.Xmax = sX / f.cycles;
   f.Fmax = sF / f.cycles;
   f.Ksec = f.Fmax / f.Xmax;
-  f.V0 = sV / f.cycles;
+  f.V0 = sV / std::max(1, nTg / 2);
   return f;
 }
 
 StsParams invert_sts(const LoopFeatures &f, int N) {
-  const double T1 = f.Tg1, T2 = f.Tg2, F = f.Fmax, X = f.Xmax;
+  // Eq. (20) as printed gives the peak-to-peak force of the loop, not its
+  // amplitude (checked by hand for N = 3 and by simulation, tests/
+  // physics_test.cpp), so eq. (21)-(24) hold with peak-to-peak F and X.
+  const double T1 = f.Tg1, T2 = f.Tg2, F = 2.0 * f.Fmax, X = 2.0 * f.Xmax;
   const double den = 2.0 * F - (T1 + T2) * X;
   StsParams s;
   s.K0 = (F * (T1 + T2) - 2.0 * T1 * T2 * X) / den;                           // eq. (21)

@@ -30,7 +30,8 @@ LoopFeatures detect_loop_features(const Record &rec, double fit_from = 0.0, doub
 struct StsParams {
   double K0 = 0, Kpa = 0, Kr = 0, Ff = 0;
 };
-// eq. (21)-(24) for N cells.
+// eq. (21)-(24) for N cells, fed the peak-to-peak force and displacement
+// (2 Fmax, 2 Xmax): eq. (20) as printed is the peak-to-peak force.
 StsParams invert_sts(const LoopFeatures &f, int cells);
 
 // eq. (25)-(26): K0, Kpa, Kr from STS, C0 = Ff / V0^alpha0. Non-physical

@@ -98,9 +98,10 @@ extern "C" rtb_status rtb_stage_solve(const rtb_params *p, const rtb_settings *s
     if (hnorm <= set->tol * scale || hnorm <= DBL_MIN) { st->converged = 1; break; }
     if (it >= set->max_iter) break;
 
-    /* Newton step: (I + h K D) df = -H. */
+    /* Newton step: (I + h K D) df = -H. Column k of h K D carries D[k], so
+     * every D must be known before the matrix is assembled. */
+    for (int k = 0; k < n; ++k) D[k] = rtb_law_dvdf(f[k], v[k], ch.alpha);
     for (int k = 0; k < n; ++k) {
-      D[k] = rtb_law_dvdf(f[k], v[k], ch.alpha);
       const double hKD = ch.h * rtb_chain_diag(k, ch.Kpa, ch.Kr) * D[k];
       steep[k] = hKD > 1.0;
       di[k] = 1.0 + hKD;

@@ -1,0 +1,77 @@
+// cmd_diagnose.cpp -- `rtb diagnose`: what the RT model gets wrong in the
+// data, its cause (one word of the vocabulary), the extended model and the
+// held-out gain.
+#include <cmath>
+#include <cstdio>
+#include <nlohmann/json.hpp>
+
+#include "cli/cli.h"
+#include "cli/diagnose_report.h"
+#include "cli/fit_common.h"
+#include "diagnose/diagnose.h"
+#include "io/header_writer.h"
+#include "io/params_json.h"
+
+namespace rtb {
+namespace cli {
+
+int run_diagnose(int argc, char **argv) {
+  static const CommandSpec spec{
+      "diagnose",
+      "Fit the RT model, analyse its residuals, try every extension of the\n"
+      "vocabulary (cubic_stiffness, asymmetry, maxwell, viscous, backlash, mullins,\n"
+      "delay, inertia, offset) and name the cause that explains the held-out\n"
+      "records best, or none.",
+      {
+          {"data", "FILE", "fit record CSV; repeat for several", true, true},
+          {"holdout", "FILE", "held-out record CSV; repeat for several", false, true},
+          {"cells", "N", "number of RT cells (default 15)"},
+          {"fit-from", "S", "fit only samples from t0 + S on"},
+          {"only", "LIST", "try only these candidates (comma separated)"},
+          {"min-gain", "G", "relative held-out error reduction a cause must bring (default 0.15)"},
+          {"threads", "N", "candidate fits in parallel (default 2)"},
+          {"out", "FILE", "JSON report", true},
+          {"header", "FILE", "emit the extended model's C parameter header"},
+          {"name", "IDENT", "name of the constant in the header (default rtb_extended)"},
+          {"plot-dir", "DIR", "write residual/loop data files and gnuplot PNGs there"},
+          {"quiet", nullptr, "no progress on stderr"},
+      },
+      "delay and offset are measurement-chain artefacts: they are estimated and\n"
+      "corrected in the data, never put into the real-time element."};
+  Args a;
+  if (parse_or_help(spec, argc, argv, a)) return kExitOk;
+  DiagnoseOptions o;
+  o.cells = (int)a.get_int("cells", RTB_DEFAULT_CELLS);
+  if (o.cells < 1 || o.cells > RTB_MAX_CELLS) throw UsageError("--cells out of range");
+  o.misfit.fit_from = a.get_double("fit-from", 0.0);
+  o.min_gain = a.get_double("min-gain", o.min_gain);
+  o.threads = (int)a.get_int("threads", 2);
+  o.quiet = a.has("quiet");
+  if (a.has("only")) {
+    std::string s = a.get("only");
+    size_t pos = 0;
+    while (pos <= s.size()) {
+      const size_t e = s.find(',', pos);
+      o.only.push_back(s.substr(pos, e == std::string::npos ? std::string::npos : e - pos));
+      if (e == std::string::npos) break;
+      pos = e + 1;
+    }
+  }
+  std::string why;
+  const std::string name = a.get("name", "rtb_extended");
+  if (a.has("header") && !is_valid_header_name(name, &why)) throw UsageError("--name: " + why);
+  std::vector<Record> fit, hold;
+  for (const std::string &p : a.all("data")) fit.push_back(read_record_csv(p));
+  if (a.has("holdout"))
+    for (const std::string &p : a.all("holdout")) hold.push_back(read_record_csv(p));
+
+  const DiagnoseResult R = diagnose(fit, hold, o);
+  print_diagnosis(R);
+  write_file_atomic(a.get("out"), diagnosis_json(R, fit, hold).dump(2) + "\n");
+  if (a.has("header")) write_file_atomic(a.get("header"), diagnosis_header(R, fit, name));
+  if (a.has("plot-dir")) write_diagnosis_plots(R, fit, hold, a.get("plot-dir"));
+  return kExitOk;
+}
+
+}  // namespace cli
+}  // namespace rtb

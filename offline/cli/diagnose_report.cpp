@@ -1,0 +1,163 @@
+// diagnose_report.cpp -- see diagnose_report.h.
+#include "cli/diagnose_report.h"
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <sys/stat.h>
+
+#include "cli/cli.h"
+#include "cli/fit_common.h"
+#include "io/header_writer.h"
+#include "io/params_json.h"
+
+namespace rtb {
+namespace cli {
+
+namespace {
+
+nlohmann::ordered_json ext_params_json(const ExtFitResult &f) {
+  nlohmann::ordered_json j;
+  for (size_t i = 0; i < f.names.size(); ++i) {
+    nlohmann::ordered_json e = {{"value", f.value[(Eigen::Index)i]}};
+    if (f.stddev_valid) e["stddev"] = f.stddev[(Eigen::Index)i];
+    j[f.names[i]] = e;
+  }
+  return j;
+}
+
+nlohmann::ordered_json num(double v) {
+  return std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json(nullptr);
+}
+
+}  // namespace
+
+void print_diagnosis(const DiagnoseResult &R) {
+  std::printf("%-16s %10s %10s %10s %8s %6s  %s\n", "candidate", "fit %", "holdout %", "dBIC", "z",
+              "gain", "verdict");
+  std::printf("%-16s %10.3f %10.3f\n", "(plain RT)", 100 * R.baseline_error_fit,
+              100 * R.baseline_error_holdout);
+  for (const CandidateOutcome &c : R.candidates)
+    std::printf("%-16s %10.3f %10.3f %10.4g %8.3g %5.0f%%  %s\n", c.cand.name.c_str(),
+                100 * c.fit.error, 100 * c.error_holdout, c.dbic, c.amplitude_z, 100 * c.gain,
+                c.eligible ? "eligible" : c.why.c_str());
+  if (!R.residuals.empty()) {
+    const RecordResiduals &r = R.residuals.front();
+    std::printf("baseline residual signatures (%s):", r.path.c_str());
+    for (size_t i = 0; i < r.signatures.size() && i < 3; ++i)
+      std::printf(" %s %.0f%%", r.signatures[i].name.c_str(), 100 * r.signatures[i].explained);
+    std::printf("\n");
+  }
+  std::printf("%s  [%.1f s]\n", R.verdict.c_str(), R.wall_seconds);
+}
+
+nlohmann::ordered_json diagnosis_json(const DiagnoseResult &R, const std::vector<Record> &fit,
+                                      const std::vector<Record> &hold) {
+  nlohmann::ordered_json j;
+  j["cause"] = R.cause;
+  j["verdict"] = R.verdict;
+  j["physical"] = R.chosen >= 0 ? R.candidates[(size_t)R.chosen].cand.physical : true;
+  j["baseline"] = {{"params", params_to_json(R.baseline.p)},
+                   {"error_fit", R.baseline_error_fit},
+                   {"error_holdout", num(R.baseline_error_holdout)},
+                   {"uncertainty", uncertainty_json(R.baseline_fit.uncertainty)}};
+  nlohmann::ordered_json ext = {{"params", params_to_json(R.extended.p)},
+                                {"error_fit", R.extended_error_fit},
+                                {"error_holdout", num(R.extended_error_holdout)},
+                                {"delay", R.extended.delay},
+                                {"offset", R.extended.offset}};
+  if (R.chosen >= 0) ext["fitted"] = ext_params_json(R.candidates[(size_t)R.chosen].fit);
+  j["extended"] = ext;
+  j["gain"] = num(R.gain);
+  j["holdout_used"] = R.has_holdout;
+  nlohmann::ordered_json cs = nlohmann::ordered_json::array();
+  for (const CandidateOutcome &c : R.candidates) {
+    nlohmann::ordered_json e;
+    e["name"] = c.cand.name;
+    e["physical"] = c.cand.physical;
+    e["params"] = ext_params_json(c.fit);
+    e["error_fit"] = num(c.fit.error);
+    e["error_holdout"] = num(c.error_holdout);
+    e["criterion"] = {{"delta_bic", num(c.dbic)}, {"holdout_gain", num(c.gain)},
+                      {"amplitude_z", num(c.amplitude_z)}};
+    e["eligible"] = c.eligible;
+    if (!c.eligible) e["why_not"] = c.why;
+    e["iterations"] = c.fit.iterations;
+    cs.push_back(e);
+  }
+  j["candidates"] = cs;
+  j["residuals"] = residuals_json(R.residuals);
+  nlohmann::ordered_json files = nlohmann::ordered_json::array();
+  for (const Record &r : fit) files.push_back({{"path", r.path}, {"sha256", r.sha256}, {"role", "fit"}});
+  for (const Record &r : hold) files.push_back({{"path", r.path}, {"sha256", r.sha256}, {"role", "holdout"}});
+  j["data"] = files;
+  j["wall_time_s"] = R.wall_seconds;
+  j["tool"] = tool_version();
+  return j;
+}
+
+std::string diagnosis_header(const DiagnoseResult &R, const std::vector<Record> &fit,
+                             const std::string &name) {
+  HeaderInfo hi;
+  hi.name = name;
+  hi.tool_version = tool_version();
+  for (const Record &r : fit) {
+    HeaderDataFile f;
+    f.path = r.path;
+    f.sha256 = r.sha256;
+    f.samples = r.t.size();
+    hi.data_files.push_back(f);
+  }
+  hi.error = R.extended_error_fit;
+  hi.provenance.push_back("rtb diagnose: " + R.verdict);
+  if (R.chosen >= 0) {
+    const ExtFitResult &f = R.candidates[(size_t)R.chosen].fit;
+    if (f.stddev_valid)
+      for (size_t i = 0; i < f.names.size(); ++i)
+        hi.std_devs[f.names[i]] = f.stddev[(Eigen::Index)i];
+    if (!R.candidates[(size_t)R.chosen].cand.physical)
+      hi.provenance.push_back("measurement artefact corrected in the data (delay " +
+                              std::to_string(R.extended.delay) + " s, offset " +
+                              std::to_string(R.extended.offset) + "); not part of the element");
+  }
+  return emit_parameter_header(R.extended.p, hi);
+}
+
+void write_diagnosis_plots(const DiagnoseResult &R, const std::vector<Record> &fit,
+                           const std::vector<Record> &hold, const std::string &dir) {
+  ::mkdir(dir.c_str(), 0755);
+  MisfitOptions mo;
+  ExtFitSpec none;
+  none.free.clear();
+  int k = 0;
+  std::string script = "set terminal pngcairo size 900,600\nset datafile separator ','\n";
+  for (const std::vector<Record> *set : {&fit, &hold})
+    for (const Record &rec : *set) {
+      Eigen::VectorXd Fb, Fe;
+      predict_extended(R.baseline, rec, mo.sim, none, Fb, nullptr);
+      predict_extended(R.extended, rec, mo.sim, none, Fe, nullptr);
+      std::string csv = "time,displacement,measured,baseline,extended\n";
+      char line[256];
+      for (size_t i = 0; i < rec.t.size(); ++i) {
+        std::snprintf(line, sizeof line, "%.9g,%.9g,%.9g,%.9g,%.9g\n", rec.t[i], rec.x[i], rec.F[i],
+                      Fb[(Eigen::Index)i], Fe[(Eigen::Index)i]);
+        csv += line;
+      }
+      const std::string base = dir + "/record" + std::to_string(k++);
+      write_file_atomic(base + ".csv", csv);
+      script += "set output '" + base + "_loop.png'\nset title '" + rec.path +
+                " (" + (set == &fit ? "fit" : "holdout") + ")' noenhanced\nset xlabel 'displacement'\n"
+                "set ylabel 'force'\nplot '" + base + ".csv' skip 1 u 2:3 w l t 'measured', '' skip 1 u 2:4 w l t 'RT', "
+                "'' skip 1 u 2:5 w l t 'extended: " + R.cause + "'\n";
+      script += "set output '" + base + "_residual.png'\nset xlabel 'time'\nset ylabel 'measured - model'\n"
+                "plot '" + base + ".csv' skip 1 u 1:($3-$4) w l t 'RT', '' skip 1 u 1:($3-$5) w l t 'extended'\n";
+    }
+  write_file_atomic(dir + "/plots.gp", script);
+  if (std::system("command -v gnuplot >/dev/null 2>&1") == 0) {
+    const std::string cmd = "gnuplot '" + dir + "/plots.gp' 2>/dev/null";
+    if (std::system(cmd.c_str()) != 0) std::fprintf(stderr, "rtb diagnose: gnuplot failed\n");
+  }
+}
+
+}  // namespace cli
+}  // namespace rtb

@@ -1,0 +1,129 @@
+// candidates.cpp -- see candidates.h.
+#include "diagnose/candidates.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace rtb {
+
+DataScales data_scales(const std::vector<Record> &recs) {
+  DataScales s;
+  s.Fmax = s.Xmax = s.Vmax = s.Amax = 0.0;
+  double dts = 0.0;
+  long ndt = 0;
+  s.duration = 0.0;
+  for (const Record &r : recs) {
+    s.duration = std::max(s.duration, r.t.back() - r.t.front());
+    for (size_t i = 0; i < r.t.size(); ++i) {
+      s.Fmax = std::max(s.Fmax, std::fabs(r.F[i]));
+      s.Xmax = std::max(s.Xmax, std::fabs(r.x[i]));
+      if (i > 0) {
+        const double h = r.t[i] - r.t[i - 1];
+        dts += h;
+        ++ndt;
+        s.Vmax = std::max(s.Vmax, std::fabs(r.x[i] - r.x[i - 1]) / h);
+      }
+      if (i > 0 && i + 1 < r.t.size()) {
+        const double h0 = r.t[i] - r.t[i - 1], h1 = r.t[i + 1] - r.t[i];
+        const double a = 2.0 * ((r.x[i + 1] - r.x[i]) / h1 - (r.x[i] - r.x[i - 1]) / h0) / (h0 + h1);
+        s.Amax = std::max(s.Amax, std::fabs(a));
+      }
+    }
+  }
+  auto pos = [](double v) { return v > 0.0 ? v : 1.0; };
+  s.Fmax = pos(s.Fmax);
+  s.Xmax = pos(s.Xmax);
+  s.Vmax = pos(s.Vmax);
+  s.Amax = pos(s.Amax);
+  s.Ksec = s.Fmax / s.Xmax;
+  s.dt = ndt ? dts / ndt : 1e-3;
+  s.duration = pos(s.duration);
+  return s;
+}
+
+const std::vector<Candidate> &candidate_vocabulary() {
+  static const std::vector<Candidate> v = {
+      {"cubic_stiffness", true, {P_k3}, false, false},
+      {"asymmetry", true, {P_k_asym}, false, false},
+      {"maxwell", true, {P_maxwell_k, P_maxwell_tau}, false, false},
+      {"viscous", true, {P_viscous_c}, false, false},
+      {"backlash", true, {P_backlash}, false, false},
+      {"mullins", true, {P_mullins}, false, false},
+      {"delay", false, {}, true, false},
+      {"inertia", true, {P_mass}, false, false},
+      {"offset", false, {}, false, true},
+  };
+  return v;
+}
+
+ExtFitSpec candidate_spec(const Candidate &c, const DataScales &s) {
+  ExtFitSpec spec;
+  spec.free = core_params();
+  spec.free.insert(spec.free.end(), c.extra.begin(), c.extra.end());
+  spec.fit_delay = c.delay;
+  spec.fit_offset = c.offset;
+  spec.scale[P_k3] = 0.1 * s.Fmax / (s.Xmax * s.Xmax * s.Xmax);
+  spec.scale[P_k_asym] = 0.1 * s.Ksec;
+  spec.delay_scale = 10.0 * s.dt;
+  spec.offset_scale = 0.01 * s.Fmax;
+  return spec;
+}
+
+std::vector<ExtModel> candidate_starts(const Candidate &c, const ExtModel &base,
+                                       const DataScales &s) {
+  std::vector<ExtModel> out;
+  ExtModel m = base;
+  auto with = [&](ParamId id, double v) {
+    ExtModel q = m;
+    param_ref(q.p, id) = v;
+    return q;
+  };
+  if (c.name == "maxwell") {
+    // Relaxation times spread over the records' time scales.
+    m.p.maxwell_k = 0.2 * s.Ksec;
+    for (double tau : {0.02 * s.duration, 0.2 * s.duration, 2.0 * s.duration})
+      out.push_back(with(P_maxwell_tau, std::max(tau, 5.0 * s.dt)));
+  } else if (c.name == "backlash") {
+    for (double g : {0.01, 0.05}) out.push_back(with(P_backlash, g * s.Xmax));
+  } else if (c.name == "viscous") {
+    out.push_back(with(P_viscous_c, 0.02 * s.Fmax / s.Vmax));
+  } else if (c.name == "inertia") {
+    out.push_back(with(P_mass, 0.02 * s.Fmax / s.Amax));
+  } else if (c.name == "mullins") {
+    out.push_back(with(P_mullins, 0.1));
+  } else {
+    out.push_back(m);  // k3, k_asym, delay, offset start at 0
+  }
+  return out;
+}
+
+std::string describe_effect(const Candidate &c, const ExtModel &m) {
+  char b[200];
+  const rtb_params &p = m.p;
+  if (c.name == "cubic_stiffness")
+    std::snprintf(b, sizeof b, "cubic stiffness k3 = %.4g (%s)", p.k3,
+                  p.k3 >= 0 ? "progressive" : "degressive");
+  else if (c.name == "asymmetry")
+    std::snprintf(b, sizeof b, "asymmetry k_asym = %.4g (tension %.4g, compression %.4g)", p.k_asym,
+                  p.K0 + p.k_asym, p.K0 - p.k_asym);
+  else if (c.name == "maxwell")
+    std::snprintf(b, sizeof b, "Maxwell branch k = %.4g, tau = %.4g s", p.maxwell_k, p.maxwell_tau);
+  else if (c.name == "viscous")
+    std::snprintf(b, sizeof b, "linear damping c = %.4g", p.viscous_c);
+  else if (c.name == "backlash")
+    std::snprintf(b, sizeof b, "backlash of %.4g", p.backlash);
+  else if (c.name == "mullins")
+    std::snprintf(b, sizeof b, "Mullins softening mu = %.4g", p.mullins);
+  else if (c.name == "delay")
+    std::snprintf(b, sizeof b, "force channel delayed by %.4g s", m.delay);
+  else if (c.name == "inertia")
+    std::snprintf(b, sizeof b, "moving mass m = %.4g", p.mass);
+  else if (c.name == "offset")
+    std::snprintf(b, sizeof b, "force offset of %.4g", m.offset);
+  else
+    std::snprintf(b, sizeof b, "%s", c.name.c_str());
+  return b;
+}
+
+}  // namespace rtb

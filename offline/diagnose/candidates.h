@@ -1,0 +1,42 @@
+// candidates.h -- the vocabulary of causes `rtb diagnose` can name, each as
+// the extra freedom it adds to the RT model and where its fit starts.
+#ifndef RTB_OFFLINE_CANDIDATES_H
+#define RTB_OFFLINE_CANDIDATES_H
+
+#include <string>
+#include <vector>
+
+#include "diagnose/extended_fit.h"
+
+namespace rtb {
+
+// Typical magnitudes of the records, for starting values and scales.
+struct DataScales {
+  double Fmax = 1, Xmax = 1, Vmax = 1, Amax = 1, Ksec = 1;
+  double dt = 1e-3, duration = 1;
+};
+DataScales data_scales(const std::vector<Record> &recs);
+
+struct Candidate {
+  std::string name;           // vocabulary word
+  bool physical = true;       // false: measurement-chain artefact (not in rt_bushing)
+  std::vector<ParamId> extra; // extension parameters it frees
+  bool delay = false, offset = false;
+};
+
+// cubic_stiffness, asymmetry, maxwell, viscous, backlash, mullins, delay,
+// inertia, offset ("none" is the absence of all of them).
+const std::vector<Candidate> &candidate_vocabulary();
+
+// Fit specification (free = core + extra) and the start points (several for
+// extensions whose misfit has distinct basins, e.g. Maxwell relaxation times).
+ExtFitSpec candidate_spec(const Candidate &c, const DataScales &s);
+std::vector<ExtModel> candidate_starts(const Candidate &c, const ExtModel &baseline,
+                                       const DataScales &s);
+
+// One line describing the fitted effect, e.g. "backlash of 0.0312".
+std::string describe_effect(const Candidate &c, const ExtModel &m);
+
+}  // namespace rtb
+
+#endif

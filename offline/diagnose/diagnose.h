@@ -1,0 +1,69 @@
+// diagnose.h -- find what the RT model gets wrong in measured data, name the
+// cause from a fixed vocabulary, fit the extended model and measure the gain.
+//
+// 1. Fit plain RT on the fit records (STS start, trust region).
+// 2. Analyse the residuals on fit and holdout records.
+// 3. Fit every candidate of candidate_vocabulary() jointly with the RT
+//    parameters, warm-started from step 1.
+// 4. A candidate is eligible when (a) its amplitude parameter is significant
+//    (|value| >= min_z standard deviations), (b) the fit improves by more than
+//    the parameter count can explain (delta BIC >= min_dbic) and (c) the
+//    held-out error drops by at least min_gain (relative). The cause is the
+//    eligible candidate with the lowest held-out error, or "none".
+#ifndef RTB_OFFLINE_DIAGNOSE_H
+#define RTB_OFFLINE_DIAGNOSE_H
+
+#include <string>
+#include <vector>
+
+#include "diagnose/candidates.h"
+#include "diagnose/residual_analysis.h"
+#include "identify/identify.h"
+
+namespace rtb {
+
+struct DiagnoseOptions {
+  int cells = RTB_DEFAULT_CELLS;
+  double alpha0 = 0.2;
+  MisfitOptions misfit;
+  double min_gain = 0.15;   // relative held-out error reduction
+  double min_dbic = 10.0;
+  double min_z = 3.0;
+  int threads = 2;
+  bool quiet = true;
+  std::vector<std::string> only;  // restrict the candidates (empty = all)
+};
+
+struct CandidateOutcome {
+  Candidate cand;
+  ExtFitResult fit;
+  double error_holdout = 0.0;
+  double dbic = 0.0;          // BIC(baseline) - BIC(candidate) on the fit records
+  double gain = 0.0;          // 1 - error_holdout / baseline error_holdout
+  double amplitude_z = 0.0;   // |amplitude parameter| / its standard deviation
+  bool eligible = false;
+  std::string why;            // reason when not eligible
+};
+
+struct DiagnoseResult {
+  IdentifyResult baseline_fit;
+  ExtModel baseline;
+  double baseline_error_fit = 0.0, baseline_error_holdout = 0.0;
+  bool has_holdout = false;
+  std::vector<RecordResiduals> residuals;
+  std::vector<CandidateOutcome> candidates;
+  int chosen = -1;            // index into candidates, -1 = none
+  std::string cause = "none";
+  ExtModel extended;          // = baseline when cause is none
+  double extended_error_fit = 0.0, extended_error_holdout = 0.0;
+  double gain = 0.0;
+  std::string verdict;
+  double wall_seconds = 0.0;
+};
+
+DiagnoseResult diagnose(const std::vector<Record> &fit, const std::vector<Record> &holdout,
+                        const DiagnoseOptions &opt);
+
+}  // namespace rtb
+
+#endif

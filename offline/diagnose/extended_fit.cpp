@@ -1,0 +1,174 @@
+// extended_fit.cpp -- see extended_fit.h.
+#include "diagnose/extended_fit.h"
+
+#include <cmath>
+
+#include "identify/optimizer.h"
+
+namespace rtb {
+
+void predict_extended(const ExtModel &m, const Record &rec, const SimOptions &sim,
+                      const ExtFitSpec &spec, Eigen::VectorXd &F, Eigen::MatrixXd *jac) {
+  Eigen::VectorXd Fm;
+  Eigen::MatrixXd Jm;
+  record_sensitivities(m.p, rec, sim, spec.free, Fm, jac ? &Jm : nullptr);
+  const Eigen::Index n = Fm.size(), P = (Eigen::Index)spec.free.size();
+  const Eigen::Index cols = P + spec.fit_delay + spec.fit_offset;
+  F.resize(n);
+  if (jac) jac->setZero(n, cols);
+  // Linear interpolation of the model output at t_j - delay.
+  Eigen::Index k = 0;
+  for (Eigen::Index j = 0; j < n; ++j) {
+    const double u = rec.t[(size_t)j] - m.delay;
+    double val, slope = 0.0;
+    if (m.delay == 0.0) {
+      val = Fm[j];
+      if (jac) jac->row(j).head(P) = Jm.row(j);
+      // Slope for d/d(delay) at 0: the backward-difference of the model force.
+      if (j > 0) slope = (Fm[j] - Fm[j - 1]) / (rec.t[(size_t)j] - rec.t[(size_t)j - 1]);
+    } else if (u <= rec.t[0]) {
+      val = Fm[0];
+      if (jac) jac->row(j).head(P) = Jm.row(0);
+    } else if (u >= rec.t[(size_t)n - 1]) {
+      val = Fm[n - 1];
+      if (jac) jac->row(j).head(P) = Jm.row(n - 1);
+    } else {
+      while (k + 1 < n && rec.t[(size_t)k + 1] <= u) ++k;
+      while (k > 0 && rec.t[(size_t)k] > u) --k;
+      const double h = rec.t[(size_t)k + 1] - rec.t[(size_t)k], a = (u - rec.t[(size_t)k]) / h;
+      val = (1 - a) * Fm[k] + a * Fm[k + 1];
+      slope = (Fm[k + 1] - Fm[k]) / h;
+      if (jac) jac->row(j).head(P) = (1 - a) * Jm.row(k) + a * Jm.row(k + 1);
+    }
+    F[j] = val + m.offset;
+    if (jac) {
+      Eigen::Index c = P;
+      if (spec.fit_delay) (*jac)(j, c++) = -slope;
+      if (spec.fit_offset) (*jac)(j, c) = 1.0;
+    }
+  }
+}
+
+double extended_error(const ExtModel &m, const std::vector<Record> &recs,
+                      const MisfitOptions &opt, double *Jout, double *J0out) {
+  double J = 0.0, J0 = 0.0;
+  ExtFitSpec none;
+  none.free.clear();
+  for (const Record &rec : recs) {
+    Eigen::VectorXd F;
+    predict_extended(m, rec, opt.sim, none, F, nullptr);
+    const std::vector<double> w = quadrature_weights(rec, opt.fit_from);
+    for (size_t j = 0; j < rec.F.size(); ++j) {
+      const double r = F[(Eigen::Index)j] - rec.F[j];
+      J += 0.5 * w[j] * r * r;
+      J0 += 0.5 * w[j] * rec.F[j] * rec.F[j];
+    }
+  }
+  if (Jout) *Jout = J;
+  if (J0out) *J0out = J0;
+  return J0 > 0.0 ? std::sqrt(J / J0) : INFINITY;
+}
+
+ExtFitResult fit_extended(const std::vector<Record> &recs, const ExtModel &start,
+                          const ExtFitSpec &spec, const MisfitOptions &opt) {
+  ParamTransform tf(spec.free, start.p);
+  for (ParamId id : spec.free)
+    if (param_get(start.p, id) == 0.0 && spec.scale[id] > 0.0) tf.scale[id] = spec.scale[id];
+  const Eigen::Index P = (Eigen::Index)spec.free.size();
+  const Eigen::Index nt = P + spec.fit_delay + spec.fit_offset;
+  double J0 = 0.0;
+  extended_error(start, recs, opt, nullptr, &J0);
+  const double s = 1.0 / std::sqrt(J0);
+
+  auto unpack = [&](const Eigen::VectorXd &th) {
+    ExtModel m = start;
+    m.p = tf.to_params(th.head(P), start.p);
+    Eigen::Index c = P;
+    if (spec.fit_delay) m.delay = th[c++] * spec.delay_scale;
+    if (spec.fit_offset) m.offset = th[c] * spec.offset_scale;
+    return m;
+  };
+  Objective obj;
+  obj.residuals = [&](const Eigen::VectorXd &th, Eigen::VectorXd &r, Eigen::MatrixXd *jac) {
+    const ExtModel m = unpack(th);
+    std::vector<double> rv;
+    std::vector<Eigen::RowVectorXd> rows;
+    try {
+      if (rtb_params_validate(&m.p) != RTB_OK) throw std::runtime_error("invalid");
+      Eigen::VectorXd scale(nt);
+      scale.head(P) = tf.dp_dtheta(th.head(P));
+      Eigen::Index c = P;
+      if (spec.fit_delay) scale[c++] = spec.delay_scale;
+      if (spec.fit_offset) scale[c] = spec.offset_scale;
+      for (const Record &rec : recs) {
+        Eigen::VectorXd F;
+        Eigen::MatrixXd J;
+        predict_extended(m, rec, opt.sim, spec, F, jac ? &J : nullptr);
+        const std::vector<double> w = quadrature_weights(rec, opt.fit_from);
+        for (size_t j = 0; j < rec.F.size(); ++j) {
+          if (!(w[j] > 0.0)) continue;
+          const double q = s * std::sqrt(w[j]);
+          rv.push_back(q * (F[(Eigen::Index)j] - rec.F[j]));
+          if (jac) rows.push_back(q * J.row((Eigen::Index)j).cwiseProduct(scale.transpose()));
+        }
+      }
+    } catch (const std::runtime_error &) {
+      r = Eigen::VectorXd::Constant(1, INFINITY);
+      if (jac) jac->setZero(1, nt);
+      return;
+    }
+    r = Eigen::Map<Eigen::VectorXd>(rv.data(), (Eigen::Index)rv.size());
+    if (jac) {
+      jac->resize(r.size(), nt);
+      for (size_t k = 0; k < rows.size(); ++k) jac->row((Eigen::Index)k) = rows[k];
+    }
+  };
+  Eigen::VectorXd th0(nt);
+  th0.head(P) = tf.to_theta(start.p);
+  Eigen::Index c = P;
+  if (spec.fit_delay) th0[c++] = start.delay / spec.delay_scale;
+  if (spec.fit_offset) th0[c] = start.offset / spec.offset_scale;
+  OptOptions oo;
+  oo.max_iter = spec.max_iter;
+  oo.ftol = 1e-10;
+  const OptResult o = minimize_trust_region(obj, th0, oo);
+
+  ExtFitResult out;
+  out.model = unpack(o.theta);
+  out.iterations = o.iterations;
+  out.converged = o.converged;
+  out.error = extended_error(out.model, recs, opt, &out.J, &out.J0);
+  for (ParamId id : spec.free) out.names.push_back(param_name(id));
+  if (spec.fit_delay) out.names.push_back("delay");
+  if (spec.fit_offset) out.names.push_back("offset");
+  out.value.resize(nt);
+  for (Eigen::Index i = 0; i < P; ++i) out.value[i] = param_get(out.model.p, spec.free[(size_t)i]);
+  c = P;
+  if (spec.fit_delay) out.value[c++] = out.model.delay;
+  if (spec.fit_offset) out.value[c] = out.model.offset;
+
+  // Standard deviations from the Gauss-Newton information in natural units
+  // (white-noise sandwich as in identify.cpp).
+  Eigen::VectorXd r;
+  Eigen::MatrixXd Jt;
+  obj.residuals(o.theta, r, &Jt);
+  out.samples = r.size();
+  Eigen::VectorXd scale(nt);
+  scale.head(P) = tf.dp_dtheta(o.theta.head(P));
+  c = P;
+  if (spec.fit_delay) scale[c++] = spec.delay_scale;
+  if (spec.fit_offset) scale[c] = spec.offset_scale;
+  std::vector<double> w;
+  for (const Record &rec : recs)
+    for (double v : quadrature_weights(rec, opt.fit_from))
+      if (v > 0.0) w.push_back(v);
+  if (r.size() > nt && (Eigen::Index)w.size() == r.size()) {
+    const Eigen::MatrixXd Jp = Jt * scale.cwiseInverse().asDiagonal() / s;  // natural units
+    const Eigen::VectorXd rp = r / s;
+    const Eigen::Map<Eigen::VectorXd> wv(w.data(), r.size());
+    out.stddev_valid = sandwich_covariance(rp, Jp, wv, out.stddev, nullptr);
+  }
+  return out;
+}
+
+}  // namespace rtb

@@ -1,0 +1,59 @@
+// extended_fit.h -- least-squares fit of an extended model: the RT element
+// with any of its physical extensions free, plus two measurement-chain
+// artefacts that act on the predicted force only and never enter the
+// real-time element:
+//   F_pred(t) = F_model(t - delay) + offset.
+#ifndef RTB_OFFLINE_EXTENDED_FIT_H
+#define RTB_OFFLINE_EXTENDED_FIT_H
+
+#include <Eigen/Dense>
+#include <array>
+#include <string>
+#include <vector>
+
+#include "adjoint/misfit_gradient.h"
+#include "identify/identify.h"
+
+namespace rtb {
+
+struct ExtModel {
+  rtb_params p{};
+  double delay = 0.0;   // [time] force channel lags displacement by `delay`
+  double offset = 0.0;  // [force] constant sensor offset
+};
+
+struct ExtFitSpec {
+  std::vector<ParamId> free = core_params();
+  bool fit_delay = false, fit_offset = false;
+  std::array<double, P_COUNT> scale{};  // typical size of signed params starting at 0
+  double delay_scale = 1e-3, offset_scale = 1.0;
+  int max_iter = 60;
+};
+
+struct ExtFitResult {
+  ExtModel model;
+  double error = 0.0;        // sqrt(J/J0) on the fit records
+  double J = 0.0, J0 = 0.0;
+  long samples = 0;          // residuals in the misfit
+  int iterations = 0;
+  bool converged = false;
+  std::vector<std::string> names;  // free parameter names, then delay, offset
+  Eigen::VectorXd value, stddev;   // same order as names
+  bool stddev_valid = false;
+};
+
+// Predicted force at the record's samples and its sensitivities (columns:
+// spec.free, then delay, then offset when fitted).
+void predict_extended(const ExtModel &m, const Record &rec, const SimOptions &sim,
+                      const ExtFitSpec &spec, Eigen::VectorXd &F, Eigen::MatrixXd *jac);
+
+ExtFitResult fit_extended(const std::vector<Record> &recs, const ExtModel &start,
+                          const ExtFitSpec &spec, const MisfitOptions &opt);
+
+// sqrt(sum J / sum J0) of a model on records (eq. (27)), and its J, J0.
+double extended_error(const ExtModel &m, const std::vector<Record> &recs,
+                      const MisfitOptions &opt, double *J = nullptr, double *J0 = nullptr);
+
+}  // namespace rtb
+
+#endif

@@ -1,0 +1,212 @@
+// csv_reader.cpp -- measured records from CSV (see rtb_offline.h / io/csv.h).
+//
+// Format: optional '#' comment lines (one may be "# units: ..."), one header
+// line naming the columns (time, displacement, force; any order, case and
+// surrounding blanks ignored, extra columns ignored), then numeric rows with
+// as many fields as the header. CRLF line ends and trailing blank lines are
+// accepted. Every error names the file and line (and the column).
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <string>
+#include <string_view>
+#include <system_error>
+#include <vector>
+
+#include "io/atomic_file.h"
+#include "io/csv.h"
+#include "rtb_offline.h"
+
+namespace rtb {
+namespace {
+
+std::string_view trim(std::string_view s) {
+  size_t b = 0, e = s.size();
+  while (b < e && (s[b] == ' ' || s[b] == '\t')) ++b;
+  while (e > b && (s[e - 1] == ' ' || s[e - 1] == '\t')) --e;
+  return s.substr(b, e - b);
+}
+
+// Trimmed, one pair of surrounding double quotes removed.
+std::string_view clean_cell(std::string_view s) {
+  s = trim(s);
+  if (s.size() >= 2 && s.front() == '"' && s.back() == '"') s = trim(s.substr(1, s.size() - 2));
+  return s;
+}
+
+std::string lower(std::string_view s) {
+  std::string out(s);
+  for (char &c : out) c = (char)std::tolower((unsigned char)c);
+  return out;
+}
+
+bool istarts_with(std::string_view s, std::string_view prefix) {
+  if (s.size() < prefix.size()) return false;
+  for (size_t i = 0; i < prefix.size(); ++i)
+    if (std::tolower((unsigned char)s[i]) != std::tolower((unsigned char)prefix[i])) return false;
+  return true;
+}
+
+void split(std::string_view line, std::vector<std::string_view> &out) {
+  out.clear();
+  size_t start = 0;
+  for (;;) {
+    const size_t comma = line.find(',', start);
+    if (comma == std::string_view::npos) {
+      out.push_back(line.substr(start));
+      return;
+    }
+    out.push_back(line.substr(start, comma - start));
+    start = comma + 1;
+  }
+}
+
+enum class NumStatus { ok, not_a_number, out_of_range };
+
+NumStatus parse_double(std::string_view s, double &v) {
+  s = clean_cell(s);
+  if (!s.empty() && s.front() == '+') s.remove_prefix(1);
+  if (s.empty()) return NumStatus::not_a_number;
+  const char *b = s.data(), *e = s.data() + s.size();
+  const auto r = std::from_chars(b, e, v, std::chars_format::general);
+  if (r.ptr != e) return NumStatus::not_a_number;
+  if (r.ec == std::errc::result_out_of_range) return NumStatus::out_of_range;
+  if (r.ec != std::errc()) return NumStatus::not_a_number;
+  return NumStatus::ok;
+}
+
+struct Ctx {
+  const std::string &path;
+  [[noreturn]] void fail(size_t line, const std::string &what) const {
+    throw InputError(path + ":" + std::to_string(line) + ": " + what);
+  }
+};
+
+std::string quoted(std::string_view s) { return "\"" + std::string(s) + "\""; }
+
+}  // namespace
+
+Record parse_record_csv(const std::string &bytes, const std::string &path,
+                        const CsvReadOptions &opt) {
+  const Ctx ctx{path};
+  Record rec;
+  rec.path = path;
+  rec.sha256 = sha256_hex(bytes);
+
+  std::string_view text(bytes);
+  if (text.size() >= 3 && (unsigned char)text[0] == 0xEF && (unsigned char)text[1] == 0xBB &&
+      (unsigned char)text[2] == 0xBF)
+    text.remove_prefix(3);  // UTF-8 byte order mark
+
+  static const char *const kNames[3] = {"time", "displacement", "force"};
+  int col[3] = {-1, -1, -1};
+  size_t n_fields = 0;
+  size_t header_line = 0;
+  size_t first_blank_after_header = 0;
+  size_t line_no = 0;
+  size_t prev_time_line = 0;
+  std::string prev_time_text;
+  std::vector<std::string_view> fields;
+  std::vector<std::string> header_names;
+
+  size_t pos = 0;
+  while (pos < text.size()) {
+    size_t nl = text.find('\n', pos);
+    if (nl == std::string_view::npos) nl = text.size();
+    std::string_view line = text.substr(pos, nl - pos);
+    pos = nl + 1;
+    ++line_no;
+    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+    const std::string_view t = trim(line);
+
+    if (t.empty()) {
+      if (header_line != 0 && first_blank_after_header == 0) first_blank_after_header = line_no;
+      continue;
+    }
+    if (t.front() == '#') {
+      std::string_view c = trim(t.substr(1));
+      if (istarts_with(c, "units:") && rec.units.empty()) rec.units = std::string(trim(c.substr(6)));
+      continue;
+    }
+
+    if (header_line == 0) {  // ---- header
+      header_line = line_no;
+      split(t, fields);
+      n_fields = fields.size();
+      bool all_numeric = true;
+      for (size_t i = 0; i < fields.size(); ++i) {
+        const std::string name = lower(clean_cell(fields[i]));
+        double dummy;
+        if (parse_double(fields[i], dummy) != NumStatus::ok) all_numeric = false;
+        for (int k = 0; k < 3; ++k) {
+          if (name != kNames[k]) continue;
+          if (col[k] >= 0)
+            ctx.fail(line_no, std::string("column '") + kNames[k] + "' appears twice in the header");
+          col[k] = (int)i;
+        }
+        header_names.push_back(std::string(clean_cell(fields[i])));
+      }
+      if (all_numeric)
+        ctx.fail(line_no,
+                 "no header line: expected column names (time,displacement,force) before the "
+                 "data, found \"" + std::string(t) + "\"");
+      for (int k = 0; k < 3; ++k) {
+        if (col[k] >= 0 || (k == 2 && !opt.require_force)) continue;
+        std::string have;
+        for (const auto &h : header_names) have += (have.empty() ? "" : ", ") + quoted(h);
+        ctx.fail(line_no, std::string("missing column '") + kNames[k] + "' in header (columns: " +
+                              have + ")");
+      }
+      continue;
+    }
+
+    // ---- data row
+    if (first_blank_after_header != 0)
+      ctx.fail(first_blank_after_header, "blank line inside the data (only trailing blank lines "
+                                         "are allowed)");
+    split(t, fields);
+    if (fields.size() != n_fields)
+      ctx.fail(line_no, std::to_string(fields.size()) + " field" +
+                            (fields.size() == 1 ? "" : "s") + ", but the header has " +
+                            std::to_string(n_fields));
+    double v[3] = {0.0, 0.0, 0.0};
+    for (int k = 0; k < 3; ++k) {
+      if (col[k] < 0) continue;
+      const std::string_view cell = fields[(size_t)col[k]];
+      const NumStatus s = parse_double(cell, v[k]);
+      if (s == NumStatus::not_a_number)
+        ctx.fail(line_no, std::string("column '") + kNames[k] + "': non-numeric value " +
+                              quoted(clean_cell(cell)));
+      if (s == NumStatus::out_of_range || !std::isfinite(v[k]))
+        ctx.fail(line_no, std::string("column '") + kNames[k] + "': non-finite value " +
+                              quoted(clean_cell(cell)));
+    }
+    if (!rec.t.empty() && !(v[0] > rec.t.back()))
+      ctx.fail(line_no, "time is not increasing: " + std::string(clean_cell(fields[(size_t)col[0]])) +
+                            " follows " + prev_time_text + " (line " +
+                            std::to_string(prev_time_line) + ")");
+    prev_time_text = std::string(clean_cell(fields[(size_t)col[0]]));
+    prev_time_line = line_no;
+    rec.t.push_back(v[0]);
+    rec.x.push_back(v[1]);
+    if (col[2] >= 0) rec.F.push_back(v[2]);
+  }
+
+  if (header_line == 0)
+    ctx.fail(line_no > 0 ? line_no : 1,
+             "no header line (expected column names time,displacement,force)");
+  if (rec.t.size() < (size_t)kMinSamples)
+    ctx.fail(line_no, "only " + std::to_string(rec.t.size()) + " data row" +
+                          (rec.t.size() == 1 ? "" : "s") + " after the header (line " +
+                          std::to_string(header_line) + "), at least " +
+                          std::to_string(kMinSamples) + " are needed");
+  return rec;
+}
+
+Record read_record_csv(const std::string &path, const CsvReadOptions &opt) {
+  return parse_record_csv(read_file_bytes(path), path, opt);
+}
+
+Record read_record_csv(const std::string &path) { return read_record_csv(path, CsvReadOptions()); }
+
+}  // namespace rtb

@@ -1,0 +1,89 @@
+/* c99_client.c -- the public header and the library from a strict C99 host.
+ * Built with -std=c99 -pedantic -Wall -Wextra -Werror (tests/CMakeLists.txt).
+ * Returns 0 and prints "c99_client: OK ..." on success, 1 on failure. */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "rt_bushing.h"
+
+static int failures = 0;
+
+static void check(int ok, const char *what) {
+  if (!ok) {
+    printf("c99_client: FAIL: %s\n", what);
+    ++failures;
+  }
+}
+
+/* Drive one state with a sine; returns the peak |force| (or -1 on failure). */
+static double run_sine(const rtb_params *p, const char *name) {
+  rtb_state s;
+  double peak = 0.0;
+  const double dt = 1e-3, amp = 0.5, freq = 5.0;
+  int i;
+  rtb_status st = rtb_state_init(&s, p, 0.0);
+  check(st == RTB_OK, name);
+  if (st != RTB_OK) return -1.0;
+  for (i = 1; i <= 400; ++i) {
+    const double x = amp * sin(2.0 * 3.14159265358979323846 * freq * i * dt);
+    double f = 0.0;
+    st = rtb_step(&s, p, NULL, x, dt, &f);
+    if (st < 0 || !isfinite(f)) {
+      printf("c99_client: FAIL: %s step %d status %d (%s) force %g\n", name, i, (int)st,
+             rtb_status_message(st), f);
+      ++failures;
+      return -1.0;
+    }
+    if (fabs(f) > peak) peak = fabs(f);
+  }
+  check(s.steps == 400, "committed step count");
+  return peak;
+}
+
+int main(void) {
+  rtb_info info;
+  rtb_params rt, sts;
+  rtb_state s, before;
+  double f_rt, f_sts, f = 12345.0;
+  rtb_status st;
+
+  memset(&info, 0, sizeof info);
+  rtb_get_info(&info);
+  check(info.abi_version == RTB_ABI_VERSION, "info.abi_version");
+  check(info.max_cells == RTB_MAX_CELLS, "info.max_cells");
+  check(info.scalar_bytes == (int)sizeof(rtb_real), "info.scalar_bytes");
+  check(info.scalar_bytes == RTB_SCALAR_BYTES, "RTB_SCALAR_BYTES");
+  check(info.version != NULL && info.version[0] != '\0', "info.version");
+  check(info.scalar != NULL && strcmp(info.scalar, "double") == 0, "info.scalar");
+
+  check(rtb_params_default(&rt, RTB_MODEL_RT) == RTB_OK, "rtb_params_default RT");
+  check(rtb_params_default(&sts, RTB_MODEL_STS) == RTB_OK, "rtb_params_default STS");
+  check(rtb_params_validate(&rt) == RTB_OK, "validate RT");
+  check(rtb_params_validate(&sts) == RTB_OK, "validate STS");
+
+  f_rt = run_sine(&rt, "RT sine");
+  f_sts = run_sine(&sts, "STS sine");
+  check(f_rt > 0.0, "RT force nonzero");
+  check(f_sts > 0.0, "STS force nonzero");
+
+  /* A NaN displacement is rejected; state and output untouched. */
+  check(rtb_state_init(&s, &rt, 0.0) == RTB_OK, "init for NaN check");
+  check(rtb_step(&s, &rt, NULL, 0.1, 1e-3, &f) >= 0, "step before NaN check");
+  before = s;
+  f = 12345.0;
+  st = rtb_step(&s, &rt, NULL, NAN, 1e-3, &f);
+  check(st == RTB_ERR_INPUT, "NaN input gives RTB_ERR_INPUT");
+  check(f == 12345.0, "force untouched after error");
+  check(memcmp(&s, &before, sizeof s) == 0, "state untouched after error");
+  check(rtb_status_message(st) != NULL && rtb_status_message(st)[0] != '\0',
+        "status message");
+
+  if (failures) {
+    printf("c99_client: %d failure(s)\n", failures);
+    return 1;
+  }
+  printf("c99_client: OK (rt_bushing %s, abi %d, peak |F| RT %.3f N, STS %.3f N)\n",
+         info.version, info.abi_version, f_rt, f_sts);
+  return 0;
+}

@@ -1,0 +1,384 @@
+// realtime_test.cpp -- real-time guarantees of the public API:
+//   * no heap allocation in rtb_state_init, rtb_step, rtb_evaluate, rtb_commit
+//     (RT with both integrators, STS; core model and every extension on);
+//   * bounded work: last_iterations never exceeds the documented bound.
+//
+// Allocation counting. The test binary replaces the global allocation
+// functions and counts calls while a measured region is open:
+//   * normal builds: malloc/calloc/realloc/free (forwarding to glibc's
+//     __libc_malloc & co.) AND every global operator new/delete;
+//   * AddressSanitizer builds: ASan intercepts malloc and friends, and a
+//     malloc defined in the executable would bypass its allocator (and break
+//     its free/realloc bookkeeping), so malloc is NOT replaced there. We count
+//     operator new/delete (replaced here, forwarding to the intercepted malloc)
+//     plus, as a second net, ASan's own allocation hooks
+//     (__sanitizer_install_malloc_and_free_hooks), which see every malloc,
+//     calloc, realloc and new made through the sanitizer allocator.
+// A self-test checks that the counter really sees malloc and operator new, so
+// a broken override cannot make the zero-allocation tests pass vacuously.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cmath>
+#include <cstddef>
+#include <cstdlib>
+#include <cstring>
+#include <new>
+
+#include "rt_bushing/rt_bushing.h"
+
+#if defined(__SANITIZE_ADDRESS__)
+#define RTB_TEST_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define RTB_TEST_ASAN 1
+#endif
+#endif
+
+namespace {
+
+std::atomic<bool> g_counting{false};
+std::atomic<long> g_allocs{0};
+std::atomic<long> g_frees{0};
+
+inline void note_alloc() {
+  if (g_counting.load(std::memory_order_relaxed)) g_allocs.fetch_add(1, std::memory_order_relaxed);
+}
+inline void note_free(const void *p) {
+  if (p && g_counting.load(std::memory_order_relaxed))
+    g_frees.fetch_add(1, std::memory_order_relaxed);
+}
+
+}  // namespace
+
+// ------------------------------------------------------------ C allocator
+#if defined(RTB_TEST_ASAN)
+extern "C" int __sanitizer_install_malloc_and_free_hooks(
+    void (*malloc_hook)(const volatile void *, std::size_t),
+    void (*free_hook)(const volatile void *));
+namespace {
+void asan_malloc_hook(const volatile void *, std::size_t) { note_alloc(); }
+void asan_free_hook(const volatile void *p) { note_free(const_cast<const void *>(p)); }
+[[maybe_unused]] const int g_hooks_installed =
+    __sanitizer_install_malloc_and_free_hooks(asan_malloc_hook, asan_free_hook);
+}  // namespace
+#define RTB_TEST_COUNTS_MALLOC 1
+#elif defined(__GLIBC__)
+extern "C" {
+void *__libc_malloc(std::size_t);
+void *__libc_calloc(std::size_t, std::size_t);
+void *__libc_realloc(void *, std::size_t);
+void __libc_free(void *);
+
+void *malloc(std::size_t n) {
+  note_alloc();
+  return __libc_malloc(n);
+}
+void *calloc(std::size_t n, std::size_t m) {
+  note_alloc();
+  return __libc_calloc(n, m);
+}
+void *realloc(void *p, std::size_t n) {
+  note_alloc();
+  return __libc_realloc(p, n);
+}
+void free(void *p) {
+  note_free(p);
+  __libc_free(p);
+}
+}  // extern "C"
+#define RTB_TEST_COUNTS_MALLOC 1
+#endif
+
+// ------------------------------------------------------------ C++ allocator
+// All replaceable global forms; they forward to malloc/aligned_alloc/free.
+namespace {
+void *counted_new(std::size_t n) {
+  note_alloc();
+  if (n == 0) n = 1;
+  void *p = std::malloc(n);
+  if (!p) throw std::bad_alloc();
+  return p;
+}
+void *counted_new_aligned(std::size_t n, std::align_val_t al) {
+  note_alloc();
+  std::size_t a = static_cast<std::size_t>(al);
+  if (a < sizeof(void *)) a = sizeof(void *);
+  std::size_t sz = (n + a - 1) / a * a;
+  if (sz == 0) sz = a;
+  void *p = std::aligned_alloc(a, sz);
+  if (!p) throw std::bad_alloc();
+  return p;
+}
+void counted_delete(void *p) noexcept {
+  note_free(p);
+  std::free(p);
+}
+}  // namespace
+
+void *operator new(std::size_t n) { return counted_new(n); }
+void *operator new[](std::size_t n) { return counted_new(n); }
+void *operator new(std::size_t n, const std::nothrow_t &) noexcept {
+  try { return counted_new(n); } catch (...) { return nullptr; }
+}
+void *operator new[](std::size_t n, const std::nothrow_t &) noexcept {
+  try { return counted_new(n); } catch (...) { return nullptr; }
+}
+void *operator new(std::size_t n, std::align_val_t a) { return counted_new_aligned(n, a); }
+void *operator new[](std::size_t n, std::align_val_t a) { return counted_new_aligned(n, a); }
+void *operator new(std::size_t n, std::align_val_t a, const std::nothrow_t &) noexcept {
+  try { return counted_new_aligned(n, a); } catch (...) { return nullptr; }
+}
+void *operator new[](std::size_t n, std::align_val_t a, const std::nothrow_t &) noexcept {
+  try { return counted_new_aligned(n, a); } catch (...) { return nullptr; }
+}
+void operator delete(void *p) noexcept { counted_delete(p); }
+void operator delete[](void *p) noexcept { counted_delete(p); }
+void operator delete(void *p, std::size_t) noexcept { counted_delete(p); }
+void operator delete[](void *p, std::size_t) noexcept { counted_delete(p); }
+void operator delete(void *p, const std::nothrow_t &) noexcept { counted_delete(p); }
+void operator delete[](void *p, const std::nothrow_t &) noexcept { counted_delete(p); }
+void operator delete(void *p, std::align_val_t) noexcept { counted_delete(p); }
+void operator delete[](void *p, std::align_val_t) noexcept { counted_delete(p); }
+void operator delete(void *p, std::size_t, std::align_val_t) noexcept { counted_delete(p); }
+void operator delete[](void *p, std::size_t, std::align_val_t) noexcept { counted_delete(p); }
+void operator delete(void *p, std::align_val_t, const std::nothrow_t &) noexcept {
+  counted_delete(p);
+}
+void operator delete[](void *p, std::align_val_t, const std::nothrow_t &) noexcept {
+  counted_delete(p);
+}
+
+namespace {
+
+// RAII measured region. Nothing inside may use gtest assertions (a failing
+// assertion allocates); results are checked after the region closes.
+class AllocRegion {
+ public:
+  AllocRegion() {
+    g_allocs.store(0);
+    g_frees.store(0);
+    g_counting.store(true);
+  }
+  ~AllocRegion() { stop(); }
+  void stop() { g_counting.store(false); }
+  long allocs() const { return g_allocs.load(); }
+  long frees() const { return g_frees.load(); }
+};
+
+// Opaque to the optimiser, so allocation calls below cannot be elided.
+void *(*volatile g_malloc_fn)(std::size_t) = std::malloc;
+void (*volatile g_free_fn)(void *) = std::free;
+void *(*volatile g_new_fn)(std::size_t) = ::operator new;
+void (*volatile g_delete_fn)(void *) noexcept = ::operator delete;
+
+TEST(RealtimeAllocCounter, SeesMallocAndOperatorNew) {
+#if defined(RTB_TEST_COUNTS_MALLOC)
+  {
+    AllocRegion r;
+    void *p = g_malloc_fn(64);
+    g_free_fn(p);
+    r.stop();
+    EXPECT_GE(r.allocs(), 1) << "malloc is not counted: the allocation tests would be vacuous";
+    EXPECT_GE(r.frees(), 1);
+  }
+#endif
+  {
+    AllocRegion r;
+    void *p = g_new_fn(64);
+    g_delete_fn(p);
+    r.stop();
+    EXPECT_GE(r.allocs(), 1) << "operator new is not counted";
+    EXPECT_GE(r.frees(), 1);
+  }
+  {
+    AllocRegion r;
+    r.stop();
+    EXPECT_EQ(r.allocs(), 0);
+  }
+}
+
+// ------------------------------------------------------------ scenarios
+struct Scenario {
+  const char *name;
+  int model;
+  int integrator;
+  int cells;
+  bool extensions;
+};
+
+rtb_params make_params(const Scenario &sc) {
+  rtb_params p;
+  rtb_params_default(&p, sc.model);
+  p.integrator = sc.integrator;
+  p.cells = sc.cells;
+  if (sc.extensions) {
+    p.k3 = 50.0;
+    p.k_asym = 200.0;
+    p.maxwell_k = 300.0;
+    p.maxwell_tau = 0.05;
+    p.viscous_c = 2.0;
+    p.mass = 1e-3;
+    p.backlash = 0.05;
+    p.mullins = 0.3;
+  }
+  return p;
+}
+
+// Documented bound on rtb_state::last_iterations:
+//   RT: max_iter Newton iterations per stage x stages (2 for SDIRK2, 1 for BE);
+//   STS: the active-set method is capped at 2N+4 iterations and reports 2N+5
+//   when it gives up (sts_return_map.cpp); it does not use max_iter.
+int iteration_bound(const rtb_params &p, const rtb_settings &set) {
+  if (p.model == RTB_MODEL_STS) return 2 * p.cells + 5;
+  const int stages = p.integrator == RTB_INTEGRATOR_SDIRK2 ? 2 : 1;
+  return set.max_iter * stages;
+}
+
+constexpr double kTwoPi = 6.283185307179586476925;
+
+// Displacement history: a multi-frequency sine with amplitude sweeps, so the
+// RT dashpots go through slow and fast phases and the backlash opens/closes.
+double input(long i, double dt) {
+  const double t = static_cast<double>(i) * dt;
+  return 1.5 * std::sin(kTwoPi * 3.0 * t) * (0.5 + 0.5 * std::sin(kTwoPi * 0.1 * t)) +
+         0.02 * std::sin(kTwoPi * 47.0 * t);
+}
+
+struct RunResult {
+  long allocs = 0, frees = 0;
+  long errors = 0, not_converged = 0, nonfinite = 0;
+  int max_iterations = 0;
+  int first_error = 0;
+  long first_error_step = -1;
+};
+
+// 10^5 API calls: alternating rtb_step and rtb_evaluate (+ rtb_commit), with
+// state init inside the measured region.
+RunResult run(const rtb_params &p, const rtb_settings *set, long calls) {
+  static rtb_state s, trial;  // static: no large stack frame, no heap
+  RunResult res;
+  const double dt = 1e-3;
+  AllocRegion region;
+  rtb_status st = rtb_state_init(&s, &p, 0.0);
+  if (st != RTB_OK) {
+    res.errors = 1;
+    res.first_error = st;
+    res.first_error_step = 0;
+  }
+  for (long i = 1; i <= calls && st == RTB_OK; ++i) {
+    double f = 0.0, df = 0.0;
+    const double x = input(i, dt);
+    rtb_status r;
+    if (i % 2 == 0) {
+      r = rtb_step(&s, &p, set, x, dt, &f);
+    } else {
+      // A host's implicit loop: a few trial evaluations, then commit.
+      r = rtb_evaluate(&s, &p, set, x + 1e-4, dt, &trial, &f, &df);
+      if (r >= 0) r = rtb_evaluate(&s, &p, set, x, dt, &trial, &f, &df);
+      if (r >= 0) r = rtb_commit(&s, &trial);
+    }
+    if (r < 0) {
+      if (res.errors++ == 0) {
+        res.first_error = r;
+        res.first_error_step = i;
+      }
+      continue;
+    }
+    if (r == RTB_NOT_CONVERGED) ++res.not_converged;
+    if (!std::isfinite(f) || !std::isfinite(df)) ++res.nonfinite;
+    if (s.last_iterations > res.max_iterations) res.max_iterations = s.last_iterations;
+    if (trial.last_iterations > res.max_iterations && i % 2 == 1)
+      res.max_iterations = trial.last_iterations;
+  }
+  region.stop();
+  res.allocs = region.allocs();
+  res.frees = region.frees();
+  return res;
+}
+
+class RealtimeScenario : public ::testing::TestWithParam<Scenario> {};
+
+constexpr long kCalls = 100000;
+
+TEST_P(RealtimeScenario, NoHeapAndBoundedWork) {
+  const Scenario sc = GetParam();
+  const rtb_params p = make_params(sc);
+  ASSERT_EQ(rtb_params_validate(&p), RTB_OK);
+  rtb_settings set;
+  rtb_settings_default(&set);
+
+  const RunResult res = run(p, nullptr, kCalls);
+  EXPECT_EQ(res.allocs, 0) << sc.name << ": heap allocations during init + " << kCalls << " calls";
+  EXPECT_EQ(res.frees, 0) << sc.name << ": heap frees during the measured region";
+  EXPECT_EQ(res.errors, 0) << sc.name << ": first error " << res.first_error << " ("
+                           << rtb_status_message(static_cast<rtb_status>(res.first_error))
+                           << ") at call " << res.first_error_step;
+  EXPECT_EQ(res.nonfinite, 0) << sc.name;
+  EXPECT_LE(res.max_iterations, iteration_bound(p, set)) << sc.name;
+  EXPECT_GT(res.max_iterations, 0) << sc.name << ": last_iterations never set";
+}
+
+// Forcing the iteration cap: with max_iter = 1 and an unreachable tolerance
+// the RT solve must stop at the cap (RTB_NOT_CONVERGED, still finite) instead
+// of iterating on; the count must respect the bound for the given settings.
+TEST_P(RealtimeScenario, IterationCapRespected) {
+  const Scenario sc = GetParam();
+  const rtb_params p = make_params(sc);
+  rtb_settings set;
+  rtb_settings_default(&set);
+  set.max_iter = 1;
+  set.tol = 1e-16;
+  set.max_backtrack = 2;
+
+  const RunResult res = run(p, &set, 2000);
+  EXPECT_EQ(res.allocs, 0) << sc.name;
+  EXPECT_EQ(res.errors, 0) << sc.name << ": first error " << res.first_error << " at call "
+                           << res.first_error_step;
+  EXPECT_EQ(res.nonfinite, 0) << sc.name;
+  EXPECT_LE(res.max_iterations, iteration_bound(p, set)) << sc.name;
+}
+
+const Scenario kScenarios[] = {
+    {"RT_SDIRK2", RTB_MODEL_RT, RTB_INTEGRATOR_SDIRK2, RTB_DEFAULT_CELLS, false},
+    {"RT_BE", RTB_MODEL_RT, RTB_INTEGRATOR_BE, RTB_DEFAULT_CELLS, false},
+    {"STS", RTB_MODEL_STS, RTB_INTEGRATOR_SDIRK2, RTB_DEFAULT_CELLS, false},
+    {"RT_SDIRK2_ext", RTB_MODEL_RT, RTB_INTEGRATOR_SDIRK2, RTB_DEFAULT_CELLS, true},
+    {"RT_BE_ext", RTB_MODEL_RT, RTB_INTEGRATOR_BE, RTB_DEFAULT_CELLS, true},
+    {"STS_ext", RTB_MODEL_STS, RTB_INTEGRATOR_SDIRK2, RTB_DEFAULT_CELLS, true},
+    {"RT_SDIRK2_N32_ext", RTB_MODEL_RT, RTB_INTEGRATOR_SDIRK2, RTB_MAX_CELLS, true},
+    {"STS_N32", RTB_MODEL_STS, RTB_INTEGRATOR_SDIRK2, RTB_MAX_CELLS, false},
+};
+
+INSTANTIATE_TEST_SUITE_P(All, RealtimeScenario, ::testing::ValuesIn(kScenarios),
+                         [](const ::testing::TestParamInfo<Scenario> &info) {
+                           return std::string(info.param.name);
+                         });
+
+// Error paths must not allocate either (a host may hit them every step).
+TEST(RealtimeErrors, ErrorPathsDoNotAllocate) {
+  rtb_params p;
+  rtb_params_default(&p, RTB_MODEL_RT);
+  rtb_state s, trial;
+  ASSERT_EQ(rtb_state_init(&s, &p, 0.0), RTB_OK);
+  rtb_params bad = p;
+  bad.alpha = 1.5;
+  long errors = 0;
+  double f = 0.0, df = 0.0;
+  const char *msg = nullptr;
+  AllocRegion region;
+  for (int i = 0; i < 1000; ++i) {
+    errors += rtb_step(&s, &p, nullptr, NAN, 1e-3, &f) < 0;
+    errors += rtb_step(&s, &p, nullptr, 0.1, -1.0, &f) < 0;
+    errors += rtb_step(&s, &bad, nullptr, 0.1, 1e-3, &f) < 0;
+    errors += rtb_evaluate(&s, &p, nullptr, INFINITY, 1e-3, &trial, &f, &df) < 0;
+    errors += rtb_state_init(&trial, &bad, 0.0) < 0;
+    msg = rtb_status_message(RTB_ERR_ALPHA);
+  }
+  region.stop();
+  EXPECT_EQ(region.allocs(), 0);
+  EXPECT_EQ(errors, 5000);
+  EXPECT_NE(msg, nullptr);
+}
+
+}  // namespace
