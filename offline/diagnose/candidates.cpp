@@ -70,34 +70,6 @@ ExtFitSpec candidate_spec(const Candidate &c, const DataScales &s) {
   return spec;
 }
 
-std::vector<ExtModel> candidate_starts(const Candidate &c, const ExtModel &base,
-                                       const DataScales &s) {
-  std::vector<ExtModel> out;
-  ExtModel m = base;
-  auto with = [&](ParamId id, double v) {
-    ExtModel q = m;
-    param_ref(q.p, id) = v;
-    return q;
-  };
-  if (c.name == "maxwell") {
-    // Relaxation times spread over the records' time scales.
-    m.p.maxwell_k = 0.2 * s.Ksec;
-    for (double tau : {0.02 * s.duration, 0.2 * s.duration, 2.0 * s.duration})
-      out.push_back(with(P_maxwell_tau, std::max(tau, 5.0 * s.dt)));
-  } else if (c.name == "backlash") {
-    for (double g : {0.01, 0.05}) out.push_back(with(P_backlash, g * s.Xmax));
-  } else if (c.name == "viscous") {
-    out.push_back(with(P_viscous_c, 0.02 * s.Fmax / s.Vmax));
-  } else if (c.name == "inertia") {
-    out.push_back(with(P_mass, 0.02 * s.Fmax / s.Amax));
-  } else if (c.name == "mullins") {
-    out.push_back(with(P_mullins, 0.1));
-  } else {
-    out.push_back(m);  // k3, k_asym, delay, offset start at 0
-  }
-  return out;
-}
-
 std::string describe_effect(const Candidate &c, const ExtModel &m) {
   char b[200];
   const rtb_params &p = m.p;

@@ -28,11 +28,8 @@ struct Candidate {
 // inertia, offset ("none" is the absence of all of them).
 const std::vector<Candidate> &candidate_vocabulary();
 
-// Fit specification (free = core + extra) and the start points (several for
-// extensions whose misfit has distinct basins, e.g. Maxwell relaxation times).
+// Fit specification of the joint fit: free = core + extra.
 ExtFitSpec candidate_spec(const Candidate &c, const DataScales &s);
-std::vector<ExtModel> candidate_starts(const Candidate &c, const ExtModel &baseline,
-                                       const DataScales &s);
 
 // One line describing the fitted effect, e.g. "backlash of 0.0312".
 std::string describe_effect(const Candidate &c, const ExtModel &m);

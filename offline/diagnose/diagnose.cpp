@@ -29,6 +29,131 @@ double amplitude_z(const Candidate &c, const ExtFitResult &f) {
   return 0.0;
 }
 
+template <class F>
+void parallel_for(size_t n, int threads, F &&body) {
+  std::atomic<size_t> next{0};
+  auto worker = [&]() {
+    for (size_t k; (k = next.fetch_add(1)) < n;) body(k);
+  };
+  std::vector<std::thread> pool;
+  for (int i = 1; i < std::min<int>(threads, (int)n); ++i) pool.emplace_back(worker);
+  worker();
+  for (std::thread &t : pool) t.join();
+}
+
+// Weighted baseline residuals and the weighted sensitivity columns of the
+// candidate's first (amplitude) parameter, stacked over the fit records.
+struct Columns {
+  Eigen::VectorXd r;
+  Eigen::MatrixXd g;
+};
+Columns screen_columns(const ExtModel &m, const std::vector<Record> &recs, const MisfitOptions &opt,
+                       const ExtFitSpec &spec) {
+  std::vector<double> rv;
+  std::vector<Eigen::RowVectorXd> rows;
+  for (const Record &rec : recs) {
+    Eigen::VectorXd F;
+    Eigen::MatrixXd J;
+    predict_extended(m, rec, opt.sim, spec, F, &J);
+    const std::vector<double> w = quadrature_weights(rec, opt.fit_from);
+    for (size_t j = 0; j < rec.F.size(); ++j) {
+      if (!(w[j] > 0.0)) continue;
+      const double q = std::sqrt(w[j]);
+      rv.push_back(q * (F[(Eigen::Index)j] - rec.F[j]));
+      rows.push_back(q * J.row((Eigen::Index)j));
+    }
+  }
+  Columns c;
+  c.r = Eigen::Map<Eigen::VectorXd>(rv.data(), (Eigen::Index)rv.size());
+  c.g.resize(c.r.size(), rows.empty() ? 0 : rows[0].size());
+  for (size_t k = 0; k < rows.size(); ++k) c.g.row((Eigen::Index)k) = rows[k];
+  return c;
+}
+
+// Score test at the baseline: the linearized least squares with the RT
+// sensitivities and the candidate's columns together, so that the part of
+// the effect the baseline fit has already absorbed (e.g. relaxation taken by
+// the RT cells) is re-optimized rather than counted against the candidate.
+// The candidate's amplitude is the last unknown.
+void joint_linear(const Columns &rt, const Eigen::MatrixXd &g, CandidateScreen &s) {
+  const Eigen::Index m = rt.r.size(), P = rt.g.cols(), q = g.cols();
+  Eigen::MatrixXd A(m, P + q);
+  A << rt.g, g;
+  const Eigen::VectorXd cs = A.colwise().norm().transpose().cwiseMax(1e-300);
+  const Eigen::MatrixXd As = A * cs.cwiseInverse().asDiagonal();
+  const Eigen::MatrixXd N = As.transpose() * As;
+  const Eigen::LDLT<Eigen::MatrixXd> ldlt(N);
+  const Eigen::VectorXd th = -ldlt.solve(As.transpose() * rt.r);
+  const Eigen::VectorXd res = rt.r + As * th;
+  const double r2 = rt.r.squaredNorm();
+  s.dJ = r2 > 0 ? 1.0 - res.squaredNorm() / r2 : 0.0;
+  s.value = th[P] / cs[P];
+  const double s2 = res.squaredNorm() / std::max(1.0, double(m - P - q));
+  const Eigen::VectorXd e = Eigen::VectorXd::Unit(P + q, P);
+  const double var = s2 * e.dot(ldlt.solve(e)) / (cs[P] * cs[P]);
+  s.z = var > 0 ? std::fabs(s.value) / std::sqrt(var) : 0.0;
+}
+
+CandidateScreen screen_candidate(const Candidate &c, const ExtModel &base,
+                                 const std::vector<Record> &fit, const MisfitOptions &opt,
+                                 const DataScales &sc, const Columns &rt) {
+  CandidateScreen s;
+  s.start = base;
+  ExtFitSpec spec;
+  spec.free = c.extra;
+  spec.fit_delay = c.delay;
+  spec.fit_offset = c.offset;
+  if (c.name == "maxwell") {
+    // Linear in the branch stiffness at fixed tau: scan tau over the records'
+    // time scales, keep the best.
+    spec.free = {P_maxwell_k};
+    for (double tau : {0.003, 0.01, 0.03, 0.1, 0.3, 1.0}) {
+      ExtModel m = base;
+      m.p.maxwell_tau = std::max(tau * sc.duration, 5.0 * sc.dt);
+      CandidateScreen t;
+      joint_linear(rt, screen_columns(m, fit, opt, spec).g, t);
+      if (t.value > 0.0 && t.dJ > s.dJ) {
+        s = t;
+        s.start = m;
+      }
+    }
+    s.plausible = s.value > 0.0;
+    s.start.p.maxwell_k = s.plausible ? s.value : 0.1 * sc.Ksec;
+    return s;
+  }
+  if (c.name == "backlash") {
+    // Not differentiable at g = 0: a short fit of g alone from a small gap.
+    ExtFitSpec one = spec;
+    one.max_iter = 8;
+    ExtModel m = base;
+    m.p.backlash = 0.02 * sc.Xmax;
+    const ExtFitResult f = fit_extended(fit, m, one, opt);
+    const double r2 = rt.r.squaredNorm();
+    s.value = f.model.p.backlash;
+    s.dJ = r2 > 0 ? std::max(0.0, 1.0 - f.J / (0.5 * r2)) : 0.0;
+    s.z = f.stddev_valid && f.stddev[0] > 0 ? s.value / f.stddev[0] : 0.0;
+    s.start = f.model;
+    return s;
+  }
+  joint_linear(rt, screen_columns(base, fit, opt, spec).g, s);
+  if (!c.extra.empty()) {
+    const ParamId id = c.extra[0];
+    const bool positive = id == P_viscous_c || id == P_mass || id == P_mullins;
+    s.plausible = !positive || s.value > 0.0;
+    double v = s.value;
+    if (id == P_mullins) v = std::min(std::max(v, 1e-3), 0.9);
+    if (id == P_k_asym) v = std::max(-0.9 * base.p.K0, std::min(0.9 * base.p.K0, v));
+    if (positive && !(v > 0.0)) v = 1e-6;
+    param_ref(s.start.p, id) = v;
+  }
+  if (c.delay) {
+    s.plausible = s.value > 0.0;  // the force channel lags, by definition
+    s.start.delay = s.value > 0.0 ? s.value : sc.dt;
+  }
+  if (c.offset) s.start.offset = s.value;
+  return s;
+}
+
 char pct_buf[64];
 const char *pct(double e) {
   std::snprintf(pct_buf, sizeof pct_buf, "%.2f%%", 100.0 * e);
@@ -54,8 +179,10 @@ DiagnoseResult diagnose(const std::vector<Record> &fit, const std::vector<Record
   R.baseline.p = R.baseline_fit.params;
   double Jb = 0, J0b = 0;
   R.baseline_error_fit = extended_error(R.baseline, fit, opt.misfit, &Jb, &J0b);
-  R.baseline_error_holdout =
-      R.has_holdout ? extended_error(R.baseline, holdout, hold_opt) : R.baseline_error_fit;
+  const std::vector<Record> &sel = R.has_holdout ? holdout : fit;
+  const MisfitOptions &sel_opt = R.has_holdout ? hold_opt : opt.misfit;
+  R.baseline_error_holdout = extended_error(R.baseline, sel, sel_opt);
+  R.baseline_error_holdout_trimmed = extended_error(R.baseline, sel, sel_opt, nullptr, nullptr, opt.trim);
   if (!opt.quiet)
     std::fprintf(stderr, "diagnose: baseline RT error fit %.3f%%, holdout %.3f%%\n",
                  100 * R.baseline_error_fit, 100 * R.baseline_error_holdout);
@@ -63,60 +190,59 @@ DiagnoseResult diagnose(const std::vector<Record> &fit, const std::vector<Record
   // 2. Residuals of the baseline.
   R.residuals = analyze_residuals(R.baseline, fit, holdout, opt.misfit);
 
-  // 3. Candidates, every start point a task, run on opt.threads threads.
+  // 3a. Screening at the baseline.
   const DataScales sc = data_scales(fit);
-  struct Task {
-    size_t cand;
-    ExtModel start;
-    ExtFitResult out;
-    bool ok = false;
-  };
   std::vector<Candidate> cands;
   for (const Candidate &c : candidate_vocabulary())
     if (opt.only.empty() || std::find(opt.only.begin(), opt.only.end(), c.name) != opt.only.end())
       cands.push_back(c);
-  std::vector<Task> tasks;
-  for (size_t i = 0; i < cands.size(); ++i)
-    for (const ExtModel &s : candidate_starts(cands[i], R.baseline, sc)) tasks.push_back({i, s, {}});
-  std::atomic<size_t> next{0};
-  auto worker = [&]() {
-    for (size_t k; (k = next.fetch_add(1)) < tasks.size();) {
-      Task &t = tasks[k];
-      try {
-        t.out = fit_extended(fit, t.start, candidate_spec(cands[t.cand], sc), opt.misfit);
-        t.ok = std::isfinite(t.out.J);
-      } catch (const std::exception &) {
-        t.ok = false;
-      }
-    }
-  };
-  std::vector<std::thread> pool;
-  for (int i = 1; i < std::max(1, opt.threads); ++i) pool.emplace_back(worker);
-  worker();
-  for (std::thread &th : pool) th.join();
-
-  // 4. Best start of each candidate, criteria, choice.
+  std::vector<CandidateOutcome> out(cands.size());
+  std::vector<size_t> screen_jobs;
   for (size_t i = 0; i < cands.size(); ++i) {
-    CandidateOutcome co;
-    co.cand = cands[i];
-    bool have = false;
-    for (const Task &t : tasks)
-      if (t.cand == i && t.ok && (!have || t.out.J < co.fit.J)) {
-        co.fit = t.out;
-        have = true;
-      }
-    if (!have) {
-      co.why = "fit failed";
-      co.error_holdout = INFINITY;
+    out[i].cand = cands[i];
+    screen_jobs.push_back(i);
+  }
+  ExtFitSpec core;
+  const Columns rt = screen_columns(R.baseline, fit, opt.misfit, core);
+  parallel_for(screen_jobs.size(), opt.threads, [&](size_t k) {
+    const size_t i = screen_jobs[k];
+    out[i].screen = screen_candidate(cands[i], R.baseline, fit, opt.misfit, sc, rt);
+  });
+  // 3b. Joint fits of the most promising candidates.
+  std::vector<size_t> order;
+  for (size_t i = 0; i < out.size(); ++i)
+    if (out[i].screen.plausible && out[i].screen.z >= opt.min_z) order.push_back(i);
+  std::sort(order.begin(), order.end(),
+            [&](size_t p, size_t q) { return out[p].screen.dJ > out[q].screen.dJ; });
+  if ((int)order.size() > opt.joint_fits) order.resize((size_t)opt.joint_fits);
+  parallel_for(order.size(), opt.threads, [&](size_t k) {
+    CandidateOutcome &co = out[order[k]];
+    try {
+      co.fit = fit_extended(fit, co.screen.start, candidate_spec(co.cand, sc), opt.misfit);
+      co.joint = std::isfinite(co.fit.J);
+    } catch (const std::exception &) {
+      co.joint = false;
+    }
+  });
+
+  // 4. Criteria and choice.
+  for (CandidateOutcome &co : out) {
+    if (!co.joint) {
+      co.error_holdout = NAN;
+      co.fit.error = NAN;
+      co.why = !co.screen.plausible ? "screened out: effect of impossible sign"
+               : co.screen.z < opt.min_z ? "screened out: effect not significant"
+                                          : "screened out: smaller misfit reduction than others";
       R.candidates.push_back(co);
       continue;
     }
-    const double k = (double)(cands[i].extra.size() + cands[i].delay + cands[i].offset);
+    const double k = (double)(co.cand.extra.size() + co.cand.delay + co.cand.offset);
     const double ms = (double)co.fit.samples;
     co.dbic = ms * std::log(Jb / co.fit.J) - k * std::log(ms);
-    co.error_holdout = R.has_holdout ? extended_error(co.fit.model, holdout, hold_opt) : co.fit.error;
-    co.gain = 1.0 - co.error_holdout / R.baseline_error_holdout;
-    co.amplitude_z = amplitude_z(cands[i], co.fit);
+    co.error_holdout = extended_error(co.fit.model, sel, sel_opt);
+    co.error_holdout_trimmed = extended_error(co.fit.model, sel, sel_opt, nullptr, nullptr, opt.trim);
+    co.gain = 1.0 - co.error_holdout_trimmed / R.baseline_error_holdout_trimmed;
+    co.amplitude_z = amplitude_z(co.cand, co.fit);
     if (co.amplitude_z < opt.min_z) co.why = "effect not significant (z < min_z)";
     else if (co.dbic < opt.min_dbic) co.why = "fit gain explained by the extra parameters (delta BIC)";
     else if (co.gain < opt.min_gain) co.why = R.has_holdout ? "held-out gain below min_gain" : "fit gain below min_gain";
@@ -125,7 +251,8 @@ DiagnoseResult diagnose(const std::vector<Record> &fit, const std::vector<Record
   }
   for (size_t i = 0; i < R.candidates.size(); ++i)
     if (R.candidates[i].eligible &&
-        (R.chosen < 0 || R.candidates[i].error_holdout < R.candidates[(size_t)R.chosen].error_holdout))
+        (R.chosen < 0 || R.candidates[i].error_holdout_trimmed <
+                             R.candidates[(size_t)R.chosen].error_holdout_trimmed))
       R.chosen = (int)i;
 
   // 5. Extended model and gain.

@@ -3,8 +3,12 @@
 //
 // 1. Fit plain RT on the fit records (STS start, trust region).
 // 2. Analyse the residuals on fit and holdout records.
-// 3. Fit every candidate of candidate_vocabulary() jointly with the RT
-//    parameters, warm-started from step 1.
+// 3. Screen every candidate of candidate_vocabulary() at the baseline: the
+//    best size of its effect with the RT parameters held, from the exact
+//    sensitivities (a linear least-squares step for effects linear in their
+//    parameter, a tau grid for Maxwell, a short fit for backlash); then fit
+//    the `joint_fits` most promising ones jointly with the RT parameters,
+//    warm-started from the screen.
 // 4. A candidate is eligible when (a) its amplitude parameter is significant
 //    (|value| >= min_z standard deviations), (b) the fit improves by more than
 //    the parameter count can explain (delta BIC >= min_dbic) and (c) the
@@ -29,17 +33,30 @@ struct DiagnoseOptions {
   double min_gain = 0.15;   // relative held-out error reduction
   double min_dbic = 10.0;
   double min_z = 3.0;
+  double trim = 0.005;      // fraction of largest held-out residuals ignored when selecting
   int threads = 2;
+  int joint_fits = 3;       // candidates fitted jointly after screening
   bool quiet = true;
   std::vector<std::string> only;  // restrict the candidates (empty = all)
 };
 
+struct CandidateScreen {
+  double value = 0.0;         // best effect size with RT held at the baseline
+  double z = 0.0;             // its significance
+  double dJ = 0.0;            // misfit reduction it brings (relative to baseline J)
+  bool plausible = true;      // sign admissible (e.g. damping >= 0)
+  ExtModel start;             // start point of the joint fit
+};
+
 struct CandidateOutcome {
   Candidate cand;
+  CandidateScreen screen;
+  bool joint = false;         // fitted jointly (else screened out)
   ExtFitResult fit;
   double error_holdout = 0.0;
+  double error_holdout_trimmed = 0.0;  // selection figure (see DiagnoseOptions::trim)
   double dbic = 0.0;          // BIC(baseline) - BIC(candidate) on the fit records
-  double gain = 0.0;          // 1 - error_holdout / baseline error_holdout
+  double gain = 0.0;          // 1 - trimmed holdout error / baseline's (selection)
   double amplitude_z = 0.0;   // |amplitude parameter| / its standard deviation
   bool eligible = false;
   std::string why;            // reason when not eligible
@@ -49,6 +66,7 @@ struct DiagnoseResult {
   IdentifyResult baseline_fit;
   ExtModel baseline;
   double baseline_error_fit = 0.0, baseline_error_holdout = 0.0;
+  double baseline_error_holdout_trimmed = 0.0;
   bool has_holdout = false;
   std::vector<RecordResiduals> residuals;
   std::vector<CandidateOutcome> candidates;

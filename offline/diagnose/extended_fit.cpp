@@ -1,6 +1,7 @@
 // extended_fit.cpp -- see extended_fit.h.
 #include "diagnose/extended_fit.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "identify/optimizer.h"
@@ -50,7 +51,7 @@ void predict_extended(const ExtModel &m, const Record &rec, const SimOptions &si
 }
 
 double extended_error(const ExtModel &m, const std::vector<Record> &recs,
-                      const MisfitOptions &opt, double *Jout, double *J0out) {
+                      const MisfitOptions &opt, double *Jout, double *J0out, double trim) {
   double J = 0.0, J0 = 0.0;
   ExtFitSpec none;
   none.free.clear();
@@ -58,11 +59,20 @@ double extended_error(const ExtModel &m, const std::vector<Record> &recs,
     Eigen::VectorXd F;
     predict_extended(m, rec, opt.sim, none, F, nullptr);
     const std::vector<double> w = quadrature_weights(rec, opt.fit_from);
+    std::vector<double> terms;
     for (size_t j = 0; j < rec.F.size(); ++j) {
       const double r = F[(Eigen::Index)j] - rec.F[j];
-      J += 0.5 * w[j] * r * r;
+      terms.push_back(0.5 * w[j] * r * r);
       J0 += 0.5 * w[j] * rec.F[j] * rec.F[j];
     }
+    // Trimmed: drop the largest `trim` fraction of the terms (isolated
+    // outliers such as one-sample spikes at ideal input corners).
+    const size_t drop = (size_t)(trim * (double)terms.size());
+    if (drop > 0) {
+      std::nth_element(terms.begin(), terms.end() - (long)drop, terms.end());
+      terms.resize(terms.size() - drop);
+    }
+    for (double t : terms) J += t;
   }
   if (Jout) *Jout = J;
   if (J0out) *J0out = J0;
@@ -84,7 +94,7 @@ ExtFitResult fit_extended(const std::vector<Record> &recs, const ExtModel &start
     ExtModel m = start;
     m.p = tf.to_params(th.head(P), start.p);
     Eigen::Index c = P;
-    if (spec.fit_delay) m.delay = th[c++] * spec.delay_scale;
+    if (spec.fit_delay) m.delay = spec.delay_scale * std::exp(th[c++]);  // > 0: the force lags
     if (spec.fit_offset) m.offset = th[c] * spec.offset_scale;
     return m;
   };
@@ -98,7 +108,7 @@ ExtFitResult fit_extended(const std::vector<Record> &recs, const ExtModel &start
       Eigen::VectorXd scale(nt);
       scale.head(P) = tf.dp_dtheta(th.head(P));
       Eigen::Index c = P;
-      if (spec.fit_delay) scale[c++] = spec.delay_scale;
+      if (spec.fit_delay) scale[c++] = m.delay;
       if (spec.fit_offset) scale[c] = spec.offset_scale;
       for (const Record &rec : recs) {
         Eigen::VectorXd F;
@@ -126,7 +136,7 @@ ExtFitResult fit_extended(const std::vector<Record> &recs, const ExtModel &start
   Eigen::VectorXd th0(nt);
   th0.head(P) = tf.to_theta(start.p);
   Eigen::Index c = P;
-  if (spec.fit_delay) th0[c++] = start.delay / spec.delay_scale;
+  if (spec.fit_delay) th0[c++] = std::log(std::fmax(start.delay, 1e-3 * spec.delay_scale) / spec.delay_scale);
   if (spec.fit_offset) th0[c] = start.offset / spec.offset_scale;
   OptOptions oo;
   oo.max_iter = spec.max_iter;
@@ -156,7 +166,7 @@ ExtFitResult fit_extended(const std::vector<Record> &recs, const ExtModel &start
   Eigen::VectorXd scale(nt);
   scale.head(P) = tf.dp_dtheta(o.theta.head(P));
   c = P;
-  if (spec.fit_delay) scale[c++] = spec.delay_scale;
+  if (spec.fit_delay) scale[c++] = out.model.delay;
   if (spec.fit_offset) scale[c] = spec.offset_scale;
   std::vector<double> w;
   for (const Record &rec : recs)

@@ -18,7 +18,7 @@ namespace rtb {
 
 struct ExtModel {
   rtb_params p{};
-  double delay = 0.0;   // [time] force channel lags displacement by `delay`
+  double delay = 0.0;   // [time] force channel lags displacement by `delay` (>= 0)
   double offset = 0.0;  // [force] constant sensor offset
 };
 
@@ -51,8 +51,12 @@ ExtFitResult fit_extended(const std::vector<Record> &recs, const ExtModel &start
                           const ExtFitSpec &spec, const MisfitOptions &opt);
 
 // sqrt(sum J / sum J0) of a model on records (eq. (27)), and its J, J0.
+// trim > 0 drops that fraction of the largest squared residuals of each
+// record from J (a robust variant used to select causes, never reported as
+// the eq. (27) figure).
 double extended_error(const ExtModel &m, const std::vector<Record> &recs,
-                      const MisfitOptions &opt, double *J = nullptr, double *J0 = nullptr);
+                      const MisfitOptions &opt, double *J = nullptr, double *J0 = nullptr,
+                      double trim = 0.0);
 
 }  // namespace rtb
 
