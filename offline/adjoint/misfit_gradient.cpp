@@ -3,10 +3,12 @@
 #include "adjoint/misfit_gradient.h"
 
 #include <cmath>
+#include <cstring>
 #include <random>
 
 #include "adjoint/step_linearization.h"
 #include "model/forward.h"
+#include "model/parallel_for.h"
 
 namespace rtb {
 
@@ -51,13 +53,19 @@ void add_tikhonov(const rtb_params &p, const MisfitOptions &opt, MisfitValue &m)
 
 MisfitValue misfit(const rtb_params &p, const std::vector<Record> &recs,
                    const MisfitOptions &opt, bool want_grad) {
-  MisfitValue m;
-  for (const Record &rec : recs) {
+  struct Part {
+    double J = 0, J0 = 0;
+    std::array<double, P_COUNT> grad{};
+    long steps = 0, iters = 0;
+  };
+  std::vector<Part> parts(recs.size());
+  parallel_for(recs.size(), default_threads(), [&](size_t k) {
+    const Record &rec = recs[k];
+    Part &pt = parts[k];
     const DriveGrid g = make_drive_grid(rec, opt.sim);
     const Trajectory tr = run_forward(p, g, want_grad, opt.sim.tol);
-    ++m.forward_solves;
-    m.forward_steps += (long)g.x.size() - 1;
-    m.newton_iterations += tr.newton_iterations;
+    pt.steps = (long)g.x.size() - 1;
+    pt.iters = tr.newton_iterations;
     const std::vector<double> w = quadrature_weights(rec, opt.fit_from);
     std::vector<double> Fbar(g.x.size(), 0.0);
     KahanSum Js, J0s;
@@ -67,34 +75,74 @@ MisfitValue misfit(const rtb_params &p, const std::vector<Record> &recs,
       J0s.add(0.5 * w[j] * rec.F[j] * rec.F[j]);
       Fbar[g.first_sample + j] = w[j] * res;
     }
-    const double J = Js.s, J0 = J0s.s;
-    m.J += J;
-    m.J0 += J0;
-    m.J_rec.push_back(J);
-    m.J0_rec.push_back(J0);
-    if (!want_grad) continue;
+    pt.J = Js.s;
+    pt.J0 = J0s.s;
+    if (!want_grad) return;
     // Backward sweep: the adjoint of the discrete stepper, last step first.
-    double *pbar = m.grad.data();
+    // Step 0 is the model at rest at x = 0 (the grid ramps in otherwise): its
+    // force is 0 whatever p, so it adds nothing to the gradient.
     StateDual bar, bar_prev;
     bar.clear();
     for (size_t i = g.x.size() - 1; i >= 1; --i) {
       bar_prev.clear();
-      step_vjp(tr.step(p, g, i), bar, Fbar[i], bar_prev, pbar);
+      step_vjp(tr.step(p, g, i), bar, Fbar[i], bar_prev, pt.grad.data());
       bar = bar_prev;
     }
-    ++m.adjoint_solves;
-    // Step 0 is the model at rest at x = 0 (the grid ramps in otherwise):
-    // its force is 0 whatever p, so it adds nothing to the gradient.
+  });
+  MisfitValue m;
+  for (const Part &pt : parts) {
+    m.J += pt.J;
+    m.J0 += pt.J0;
+    m.J_rec.push_back(pt.J);
+    m.J0_rec.push_back(pt.J0);
+    for (int i = 0; i < P_COUNT; ++i) m.grad[i] += pt.grad[i];
+    m.forward_steps += pt.steps;
+    m.newton_iterations += pt.iters;
+    ++m.forward_solves;
+    if (want_grad) ++m.adjoint_solves;
   }
   add_tikhonov(p, opt, m);
   return m;
 }
 
+SensitivityCache::Entry &SensitivityCache::entry(const Record *rec) {
+  for (auto &e : entries_)
+    if (e.first == rec) return e.second;
+  entries_.emplace_back(rec, Entry());
+  return entries_.back().second;
+}
+
+void SensitivityCache::prepare(const std::vector<Record> &recs) {
+  for (const Record &r : recs) entry(&r);
+}
+
 void record_sensitivities(const rtb_params &p, const Record &rec, const SimOptions &sim,
                           const std::vector<ParamId> &free, Eigen::VectorXd &F,
-                          Eigen::MatrixXd *jac) {
-  const DriveGrid g = make_drive_grid(rec, sim);
-  const Trajectory tr = run_forward(p, g, jac != nullptr, sim.tol);
+                          Eigen::MatrixXd *jac, SensitivityCache *cache) {
+  DriveGrid gl;
+  Trajectory tl;
+  const DriveGrid *gp = &gl;
+  const Trajectory *tp = &tl;
+  if (cache) {
+    SensitivityCache::Entry &e = cache->entry(&rec);
+    const bool hit = e.valid && std::memcmp(&e.p, &p, sizeof p) == 0 && e.tol == sim.tol &&
+                     e.ramp == sim.ramp_time;
+    if (!hit) {
+      e.grid = make_drive_grid(rec, sim);
+      e.tr = run_forward(p, e.grid, true, sim.tol);
+      e.p = p;
+      e.tol = sim.tol;
+      e.ramp = sim.ramp_time;
+      e.valid = true;
+    }
+    gp = &e.grid;
+    tp = &e.tr;
+  } else {
+    gl = make_drive_grid(rec, sim);
+    tl = run_forward(p, gl, jac != nullptr, sim.tol);
+  }
+  const DriveGrid &g = *gp;
+  const Trajectory &tr = *tp;
   const Eigen::Index n = (Eigen::Index)rec.F.size();
   F = Eigen::Map<const Eigen::VectorXd>(tr.force.data() + g.first_sample, n);
   if (!jac) return;
@@ -115,26 +163,32 @@ void record_sensitivities(const rtb_params &p, const Record &rec, const SimOptio
 
 void residual_jacobian(const rtb_params &p, const std::vector<Record> &recs,
                        const MisfitOptions &opt, const std::vector<ParamId> &free,
-                       Eigen::VectorXd &r, Eigen::MatrixXd *jac) {
-  std::vector<double> rv;
-  std::vector<Eigen::RowVectorXd> rows;
-  for (const Record &rec : recs) {
-    Eigen::VectorXd F;
-    Eigen::MatrixXd J;
-    record_sensitivities(p, rec, opt.sim, free, F, jac ? &J : nullptr);
-    const std::vector<double> w = quadrature_weights(rec, opt.fit_from);
-    for (size_t j = 0; j < rec.F.size(); ++j) {
-      if (!(w[j] > 0.0)) continue;
-      const double s = std::sqrt(w[j]);
-      rv.push_back(s * (F[(Eigen::Index)j] - rec.F[j]));
-      if (jac) rows.push_back(s * J.row((Eigen::Index)j));
+                       Eigen::VectorXd &r, Eigen::MatrixXd *jac, SensitivityCache *cache) {
+  // Records in parallel, then stacked in order.
+  std::vector<Eigen::VectorXd> Fs(recs.size());
+  std::vector<Eigen::MatrixXd> Js(recs.size());
+  if (cache) cache->prepare(recs);
+  parallel_for(recs.size(), default_threads(), [&](size_t k) {
+    record_sensitivities(p, recs[k], opt.sim, free, Fs[k], jac ? &Js[k] : nullptr, cache);
+  });
+  Eigen::Index total = 0;
+  std::vector<std::vector<double>> ws(recs.size());
+  for (size_t k = 0; k < recs.size(); ++k) {
+    ws[k] = quadrature_weights(recs[k], opt.fit_from);
+    for (double w : ws[k]) total += w > 0.0;
+  }
+  r.resize(total);
+  if (jac) jac->resize(total, (Eigen::Index)free.size());
+  Eigen::Index row = 0;
+  for (size_t k = 0; k < recs.size(); ++k)
+    for (size_t j = 0; j < recs[k].F.size(); ++j) {
+      const double w = ws[k][j];
+      if (!(w > 0.0)) continue;
+      const double s = std::sqrt(w);
+      r[row] = s * (Fs[k][(Eigen::Index)j] - recs[k].F[j]);
+      if (jac) jac->row(row) = s * Js[k].row((Eigen::Index)j);
+      ++row;
     }
-  }
-  r = Eigen::Map<Eigen::VectorXd>(rv.data(), (Eigen::Index)rv.size());
-  if (jac) {
-    jac->resize((Eigen::Index)rv.size(), (Eigen::Index)free.size());
-    for (size_t k = 0; k < rows.size(); ++k) jac->row((Eigen::Index)k) = rows[k];
-  }
 }
 
 double dot_product_test(const rtb_params &p, const Record &rec, const SimOptions &sim,

@@ -9,6 +9,7 @@
 #include <array>
 #include <vector>
 
+#include "model/forward.h"
 #include "rtb_offline.h"
 
 namespace rtb {
@@ -38,17 +39,37 @@ struct MisfitValue {
 MisfitValue misfit(const rtb_params &p, const std::vector<Record> &recs,
                    const MisfitOptions &opt, bool want_grad);
 
+// Keeps the last forward run of each record with its trace, so that a
+// trust-region trial point that is accepted does not need a second forward
+// solve for its Jacobian. One cache per optimization; entries are per record.
+class SensitivityCache {
+ public:
+  struct Entry {
+    rtb_params p{};
+    double tol = 0, ramp = 0;
+    bool valid = false;
+    DriveGrid grid;
+    Trajectory tr;
+  };
+  Entry &entry(const Record *rec);  // create all entries before threading
+  void prepare(const std::vector<Record> &recs);
+
+ private:
+  std::vector<std::pair<const Record *, Entry>> entries_;
+};
+
 // Model force at the record's samples and (if jac) its sensitivities
 // dF_j/dp for the parameters in `free`, by tangent sweeps (exact).
 void record_sensitivities(const rtb_params &p, const Record &rec, const SimOptions &sim,
                           const std::vector<ParamId> &free, Eigen::VectorXd &F,
-                          Eigen::MatrixXd *jac);
+                          Eigen::MatrixXd *jac, SensitivityCache *cache = nullptr);
 
 // Weighted residuals r_j = sqrt(omega_j) (F_j - F_exp_j), stacked over records
 // (masked samples dropped), and their Jacobian w.r.t. `free` by tangent sweeps.
 void residual_jacobian(const rtb_params &p, const std::vector<Record> &recs,
                        const MisfitOptions &opt, const std::vector<ParamId> &free,
-                       Eigen::VectorXd &r, Eigen::MatrixXd *jac);
+                       Eigen::VectorXd &r, Eigen::MatrixXd *jac,
+                       SensitivityCache *cache = nullptr);
 
 // Dot-product test, eq. (15)-(16), generalized: random state sources a_i and
 // parameter direction dp through the tangent model give (dF, dy); random

@@ -9,6 +9,7 @@
 #include <thread>
 
 #include "identify/sts_init.h"
+#include "model/parallel_for.h"
 
 namespace rtb {
 
@@ -27,18 +28,6 @@ double amplitude_z(const Candidate &c, const ExtFitResult &f) {
       return sd > 0.0 ? std::fabs(f.value[(Eigen::Index)i]) / sd : INFINITY;
     }
   return 0.0;
-}
-
-template <class F>
-void parallel_for(size_t n, int threads, F &&body) {
-  std::atomic<size_t> next{0};
-  auto worker = [&]() {
-    for (size_t k; (k = next.fetch_add(1)) < n;) body(k);
-  };
-  std::vector<std::thread> pool;
-  for (int i = 1; i < std::min<int>(threads, (int)n); ++i) pool.emplace_back(worker);
-  worker();
-  for (std::thread &t : pool) t.join();
 }
 
 // Weighted baseline residuals and the weighted sensitivity columns of the

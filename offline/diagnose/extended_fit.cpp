@@ -9,10 +9,11 @@
 namespace rtb {
 
 void predict_extended(const ExtModel &m, const Record &rec, const SimOptions &sim,
-                      const ExtFitSpec &spec, Eigen::VectorXd &F, Eigen::MatrixXd *jac) {
+                      const ExtFitSpec &spec, Eigen::VectorXd &F, Eigen::MatrixXd *jac,
+                      SensitivityCache *cache) {
   Eigen::VectorXd Fm;
   Eigen::MatrixXd Jm;
-  record_sensitivities(m.p, rec, sim, spec.free, Fm, jac ? &Jm : nullptr);
+  record_sensitivities(m.p, rec, sim, spec.free, Fm, jac ? &Jm : nullptr, cache);
   const Eigen::Index n = Fm.size(), P = (Eigen::Index)spec.free.size();
   const Eigen::Index cols = P + spec.fit_delay + spec.fit_offset;
   F.resize(n);
@@ -89,6 +90,8 @@ ExtFitResult fit_extended(const std::vector<Record> &recs, const ExtModel &start
   double J0 = 0.0;
   extended_error(start, recs, opt, nullptr, &J0);
   const double s = 1.0 / std::sqrt(J0);
+  SensitivityCache cache;  // accepted trial points reuse their forward run
+  cache.prepare(recs);
 
   auto unpack = [&](const Eigen::VectorXd &th) {
     ExtModel m = start;
@@ -113,7 +116,7 @@ ExtFitResult fit_extended(const std::vector<Record> &recs, const ExtModel &start
       for (const Record &rec : recs) {
         Eigen::VectorXd F;
         Eigen::MatrixXd J;
-        predict_extended(m, rec, opt.sim, spec, F, jac ? &J : nullptr);
+        predict_extended(m, rec, opt.sim, spec, F, jac ? &J : nullptr, &cache);
         const std::vector<double> w = quadrature_weights(rec, opt.fit_from);
         for (size_t j = 0; j < rec.F.size(); ++j) {
           if (!(w[j] > 0.0)) continue;
@@ -169,14 +172,13 @@ ExtFitResult fit_extended(const std::vector<Record> &recs, const ExtModel &start
   if (spec.fit_delay) scale[c++] = out.model.delay;
   if (spec.fit_offset) scale[c] = spec.offset_scale;
   std::vector<double> w;
-  for (const Record &rec : recs)
-    for (double v : quadrature_weights(rec, opt.fit_from))
-      if (v > 0.0) w.push_back(v);
+  std::vector<int> group;
+  row_groups(recs, opt.fit_from, w, group);
   if (r.size() > nt && (Eigen::Index)w.size() == r.size()) {
     const Eigen::MatrixXd Jp = Jt * scale.cwiseInverse().asDiagonal() / s;  // natural units
     const Eigen::VectorXd rp = r / s;
     const Eigen::Map<Eigen::VectorXd> wv(w.data(), r.size());
-    out.stddev_valid = sandwich_covariance(rp, Jp, wv, out.stddev, nullptr);
+    out.stddev_valid = sandwich_covariance(rp, Jp, wv, group, out.stddev, nullptr);
   }
   return out;
 }

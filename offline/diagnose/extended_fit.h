@@ -45,7 +45,8 @@ struct ExtFitResult {
 // Predicted force at the record's samples and its sensitivities (columns:
 // spec.free, then delay, then offset when fitted).
 void predict_extended(const ExtModel &m, const Record &rec, const SimOptions &sim,
-                      const ExtFitSpec &spec, Eigen::VectorXd &F, Eigen::MatrixXd *jac);
+                      const ExtFitSpec &spec, Eigen::VectorXd &F, Eigen::MatrixXd *jac,
+                      SensitivityCache *cache = nullptr);
 
 ExtFitResult fit_extended(const std::vector<Record> &recs, const ExtModel &start,
                           const ExtFitSpec &spec, const MisfitOptions &opt);

@@ -1,6 +1,7 @@
 // identify.cpp -- glue between the misfit/adjoint and the optimizers.
 #include "identify/identify.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -29,6 +30,7 @@ IdentifyResult identify(const std::vector<Record> &recs, const rtb_params &start
   out.error_start = m0.error();
   int fwd = 1, adj = 0, tan = 0;
 
+  SensitivityCache cache;  // the accepted trial's forward run serves its Jacobian
   // f(theta) = J / J0: dimensionless, so tolerances mean the same for any units.
   Objective obj;
   obj.value_grad = [&](const Eigen::VectorXd &th, Eigen::VectorXd *grad) {
@@ -53,7 +55,7 @@ IdentifyResult identify(const std::vector<Record> &recs, const rtb_params &start
     const rtb_params p = tf.to_params(th, start);
     try {
       if (rtb_params_validate(&p) != RTB_OK) throw std::runtime_error("invalid");
-      residual_jacobian(p, recs, opt.misfit, tf.free, r, jac);
+      residual_jacobian(p, recs, opt.misfit, tf.free, r, jac, &cache);
     } catch (const std::runtime_error &) {
       r = Eigen::VectorXd::Constant(r.size() > 0 ? r.size() : 1, INFINITY);
       return;
@@ -87,8 +89,30 @@ IdentifyResult identify(const std::vector<Record> &recs, const rtb_params &start
     };
   // value_grad returns J/J0 while residuals give 1/2 |r|^2 = J/J0 as well.
   const Eigen::VectorXd th0 = tf.to_theta(start);
-  OptResult r = opt.method == Method::Bfgs ? minimize_bfgs(obj, th0, oo)
-                                           : minimize_trust_region(obj, th0, oo);
+  auto run = [&](const Eigen::VectorXd &t) {
+    return opt.method == Method::Bfgs ? minimize_bfgs(obj, t, oo) : minimize_trust_region(obj, t, oo);
+  };
+  OptResult r = run(th0);
+  if (opt.restarts > 0 && r.theta.size() > 1) {
+    Eigen::VectorXd res;
+    Eigen::MatrixXd Jt;
+    obj.residuals(r.theta, res, &Jt);
+    if (std::isfinite(res.squaredNorm()) && Jt.rows() > 0) {
+      Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(Jt.transpose() * Jt);
+      const Eigen::VectorXd dir = es.eigenvectors().col(0);  // smallest eigenvalue
+      for (int k = 0; k < opt.restarts; ++k) {
+        const double s = (k % 2 == 0 ? 0.4 : -0.4) * (1 + k / 2);
+        OptResult q = run(r.theta + s * dir);
+        if (q.f < r.f * (1.0 - 1e-9)) {
+          q.iterations += r.iterations;
+          r = q;
+          ++out.restart_improved;
+        } else {
+          r.iterations += q.iterations;
+        }
+      }
+    }
+  }
   out.params = tf.to_params(r.theta, start);
   const MisfitValue m = misfit(out.params, recs, opt.misfit, false);
   ++fwd;
@@ -117,36 +141,60 @@ Uncertainty estimate_uncertainty(const rtb_params &p, const std::vector<Record> 
   Eigen::MatrixXd Jw;
   residual_jacobian(p, recs, opt, ids, r, &Jw);
   std::vector<double> w;
-  for (const Record &rec : recs)
-    for (double v : quadrature_weights(rec, opt.fit_from))
-      if (v > 0.0) w.push_back(v);
+  std::vector<int> group;
+  row_groups(recs, opt.fit_from, w, group);
   if ((Eigen::Index)w.size() != r.size()) return u;
   const Eigen::Map<Eigen::VectorXd> wv(w.data(), r.size());
-  u.valid = sandwich_covariance(r, Jw, wv, u.stddev, &u.correlation, &u.noise_sigma);
+  u.valid = sandwich_covariance(r, Jw, wv, group, u.stddev, &u.correlation, &u.noise_sigma);
   return u;
 }
 
+void row_groups(const std::vector<Record> &recs, double fit_from, std::vector<double> &w,
+                std::vector<int> &group) {
+  w.clear();
+  group.clear();
+  for (size_t i = 0; i < recs.size(); ++i)
+    for (double v : quadrature_weights(recs[i], fit_from))
+      if (v > 0.0) {
+        w.push_back(v);
+        group.push_back((int)i);
+      }
+}
+
 bool sandwich_covariance(const Eigen::VectorXd &r, const Eigen::MatrixXd &Jw,
-                         const Eigen::VectorXd &w, Eigen::VectorXd &stddev,
-                         Eigen::MatrixXd *correlation, double *noise_sigma) {
-  // White noise of variance s^2 per sample, weights w_j (quadrature):
-  //   Cov = s^2 A^-1 B A^-1,  A = sum w J_j J_j^T,  B = sum w^2 J_j J_j^T.
+                         const Eigen::VectorXd &w, const std::vector<int> &group,
+                         Eigen::VectorXd &stddev, Eigen::MatrixXd *correlation,
+                         double *noise_sigma) {
+  // White noise of variance s_g^2 per sample in record g, weights w_j:
+  //   Cov = A^-1 B A^-1,  A = sum w J_j J_j^T,  B = sum s_g^2 w^2 J_j J_j^T,
+  // s_g^2 from record g's residuals with its share of the lost degrees of freedom.
   const Eigen::Index m = r.size(), n = Jw.cols();
-  if (m <= n || n == 0) return false;
-  double ss = 0.0;
-  for (Eigen::Index j = 0; j < m; ++j) ss += r[j] * r[j] / w[j];
-  const double s2 = ss / double(m - n);
-  if (noise_sigma) *noise_sigma = std::sqrt(s2);
+  if (m <= n || n == 0 || (Eigen::Index)group.size() != m) return false;
+  const int ng = 1 + *std::max_element(group.begin(), group.end());
+  std::vector<double> ss(ng, 0.0), cnt(ng, 0.0);
+  double sall = 0.0;
+  for (Eigen::Index j = 0; j < m; ++j) {
+    const double e2 = r[j] * r[j] / w[j];
+    ss[group[j]] += e2;
+    cnt[group[j]] += 1.0;
+    sall += e2;
+  }
+  std::vector<double> s2(ng, 0.0);
+  for (int g = 0; g < ng; ++g)
+    if (cnt[g] > 0) s2[g] = ss[g] / std::max(1.0, cnt[g] * (1.0 - double(n) / double(m)));
+  if (noise_sigma) *noise_sigma = std::sqrt(sall / double(m - n));
   // Scale columns to unit size so the inversion is well conditioned.
   const Eigen::VectorXd cs = Jw.colwise().norm().transpose().cwiseMax(1e-300);
   const Eigen::MatrixXd Js = Jw * cs.cwiseInverse().asDiagonal();
   const Eigen::MatrixXd A = Js.transpose() * Js;
-  const Eigen::MatrixXd B = Js.transpose() * w.asDiagonal() * Js;
+  Eigen::VectorXd d(m);
+  for (Eigen::Index j = 0; j < m; ++j) d[j] = s2[group[j]] * w[j];
+  const Eigen::MatrixXd B = Js.transpose() * d.asDiagonal() * Js;
   Eigen::JacobiSVD<Eigen::MatrixXd> svd(A, Eigen::ComputeFullU | Eigen::ComputeFullV);
   const Eigen::VectorXd sv = svd.singularValues();
   if (!(sv[n - 1] > 1e-14 * sv[0])) return false;
   const Eigen::MatrixXd Ai = svd.solve(Eigen::MatrixXd::Identity(n, n));
-  Eigen::MatrixXd C = s2 * Ai * B * Ai;
+  Eigen::MatrixXd C = Ai * B * Ai;
   C = cs.cwiseInverse().asDiagonal() * C * cs.cwiseInverse().asDiagonal();
   stddev = C.diagonal().cwiseSqrt();
   if (correlation)

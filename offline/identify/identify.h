@@ -22,6 +22,10 @@ struct IdentifyOptions {
   MisfitOptions misfit;
   std::vector<ParamId> free = core_params();
   int max_iter = 200;
+  // Restarts from the converged point, +-0.4 (log units) along the least
+  // determined direction of the Gauss-Newton Hessian; the lowest misfit wins.
+  // With noise the misfit has secondary minima along the Kr-C0 ridge.
+  int restarts = 2;
   bool quiet = true;  // progress lines on stderr when false
 };
 
@@ -44,6 +48,7 @@ struct IdentifyResult {
   double wall_seconds = 0.0;
   bool converged = false;
   std::string message;
+  int restart_improved = 0;  // restarts that found a lower misfit
   Uncertainty uncertainty;
 };
 
@@ -56,10 +61,16 @@ Uncertainty estimate_uncertainty(const rtb_params &p, const std::vector<Record> 
                                  const MisfitOptions &opt, const std::vector<ParamId> &ids);
 
 // The covariance core of estimate_uncertainty: residuals r_j = sqrt(w_j) e_j
-// and rows sqrt(w_j) dF_j/dp. Returns false if the information is singular.
+// and rows sqrt(w_j) dF_j/dp; group[j] names the record of row j, whose
+// noise level is estimated separately (records differ in noise). Returns
+// false if the information is singular.
 bool sandwich_covariance(const Eigen::VectorXd &r, const Eigen::MatrixXd &Jw,
-                         const Eigen::VectorXd &w, Eigen::VectorXd &stddev,
-                         Eigen::MatrixXd *correlation, double *noise_sigma = nullptr);
+                         const Eigen::VectorXd &w, const std::vector<int> &group,
+                         Eigen::VectorXd &stddev, Eigen::MatrixXd *correlation,
+                         double *noise_sigma = nullptr);
+// Rows per record after masking, as the group vector above, with weights.
+void row_groups(const std::vector<Record> &recs, double fit_from, std::vector<double> &w,
+                std::vector<int> &group);
 
 }  // namespace rtb
 

@@ -23,7 +23,7 @@ struct Objective {
 
 struct OptOptions {
   int max_iter = 200;
-  double ftol = 1e-13;   // stop when the relative decrease of f is below
+  double ftol = 1e-10;   // stop when the (predicted) relative decrease of f is below
   double xtol = 1e-10;   // stop when |step| is below (theta units ~ relative)
   std::function<void(int iter, double f, double gnorm)> progress;  // may be empty
 };

@@ -23,6 +23,19 @@ OptResult minimize_trust_region(const Objective &obj, const Eigen::VectorXd &the
     if (opt.progress) opt.progress(it, f, g.norm());
     const Eigen::MatrixXd A = J.transpose() * J;
     Eigen::VectorXd S = A.diagonal().cwiseMax(1e-12 * A.diagonal().maxCoeff());
+    // Stationarity test: the decrease the undamped Gauss-Newton step
+    // predicts. (A small damped step is not convergence: lambda may just be
+    // large after rejections.)
+    {
+      Eigen::MatrixXd M = A;
+      M.diagonal() += 1e-12 * S;
+      const double gn_pred = 0.5 * g.dot(M.ldlt().solve(g));
+      if (gn_pred <= opt.ftol * f || f < 1e-30) {
+        res.converged = true;
+        res.message = "Gauss-Newton predicted decrease below ftol";
+        break;
+      }
+    }
     bool accepted = false;
     Eigen::VectorXd step;
     double f_new = f;
@@ -52,18 +65,11 @@ OptResult minimize_trust_region(const Objective &obj, const Eigen::VectorXd &the
       res.message = "no acceptable step (stationary point within rounding)";
       break;
     }
-    const double f_old = f;
     x += step;
     obj.residuals(x, r, &J);
     ++res.evaluations;
     f = 0.5 * r.squaredNorm();
-    if (f_old - f <= opt.ftol * f_old && step.norm() < 1e-6) {
-      res.converged = true;
-      res.message = "relative decrease below ftol";
-      ++it;
-      break;
-    }
-    if (step.norm() < opt.xtol) {
+    if (step.norm() < opt.xtol && lambda < 1.0) {
       res.converged = true;
       res.message = "step below xtol";
       ++it;

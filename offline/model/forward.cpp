@@ -1,6 +1,10 @@
 // forward.cpp -- drive the real-time stepper over a record.
 #include "model/forward.h"
 
+#include <thread>
+
+#include "model/parallel_for.h"
+
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -140,4 +144,11 @@ std::vector<double> simulate_force(const rtb_params &p, const Record &rec, const
   return std::vector<double>(tr.force.begin() + g.first_sample, tr.force.end());
 }
 
+}  // namespace rtb
+
+namespace rtb {
+int default_threads() {
+  const unsigned h = std::thread::hardware_concurrency();
+  return h == 0 ? 1 : (int)std::min(8u, h);
+}
 }  // namespace rtb
