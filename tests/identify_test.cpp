@@ -4,6 +4,8 @@
 // inside about two standard deviations; STS initial values (section 5.4).
 #include <gtest/gtest.h>
 
+#include <array>
+
 #include "offline/identify/identify.h"
 #include "offline/identify/sts_init.h"
 #include "offline_test_records.h"
@@ -66,30 +68,48 @@ INSTANTIATE_TEST_SUITE_P(PaperTables, IdentifyStarts,
                                            Case{"far_bfgs", true, Method::Bfgs}),
                          [](const auto &info) { return std::string(info.param.name); });
 
-TEST(Identify, OnePercentNoiseTruthWithinTwoSigma) {
+TEST(Identify, OnePercentNoiseTruthWithinAboutTwoSigma) {
+  // A statistical statement needs several noise realizations: over 6, the
+  // z-score (estimate - truth) / stddev of every parameter has rms <= 2 and
+  // never exceeds 4 (measured over 12 seeds: rms 0.8-1.5, max 3.1; the
+  // linearized covariance is slightly optimistic along the Kr-C0 ridge).
   const rtb_params truth = truth_params();
-  const std::vector<Record> recs = rtb_test::paper_records(truth, 4.0, 0.01);
-  IdentifyOptions o;
-  const IdentifyResult r = identify(recs, near_start(truth), o);
-  ASSERT_TRUE(r.uncertainty.valid);
-  for (size_t i = 0; i < r.uncertainty.ids.size(); ++i) {
-    const ParamId id = r.uncertainty.ids[i];
-    const double z = (param_get(r.params, id) - param_get(truth, id)) / r.uncertainty.stddev[(Eigen::Index)i];
-    // "About two standard deviations": over 12 noise seeds the z-scores have
-    // rms 0.8-1.5 per parameter (the linearized covariance is slightly
-    // optimistic along the Kr-C0 ridge), max 3.1.
-    EXPECT_LT(std::fabs(z), 2.5) << param_name(id) << " z = " << z;
-    EXPECT_GT(r.uncertainty.stddev[(Eigen::Index)i], 0.0);
+  std::array<double, 5> sum2{};
+  for (unsigned seed = 1; seed <= 6; ++seed) {
+    TruthSpec ts;
+    ts.p = truth;
+    ts.noise = 0.01;
+    ts.oversample = 1;
+    std::vector<Record> recs;
+    const InputSpec specs[] = {{InputKind::Triangle, 1.0, 0.5, 3.0, 1e-3},
+                               {InputKind::Sine, 0.5, 1.0, 3.0, 1e-3},
+                               {InputKind::Sine, 0.2, 10.0, 3.0, 1e-3}};
+    unsigned k = 100 * seed;
+    for (const InputSpec &in : specs) {
+      ts.seed = k++;
+      recs.push_back(synthesize(in, ts, "noisy"));
+    }
+    const IdentifyResult r = identify(recs, near_start(truth), IdentifyOptions());
+    ASSERT_TRUE(r.uncertainty.valid);
+    // The optimizer reached the global minimum: no worse than the truth.
+    EXPECT_LE(r.J, misfit(truth, recs, MisfitOptions(), false).J * (1 + 1e-9)) << "seed " << seed;
+    for (size_t i = 0; i < 5; ++i) {
+      const ParamId id = r.uncertainty.ids[i];
+      const double z = (param_get(r.params, id) - param_get(truth, id)) / r.uncertainty.stddev[(Eigen::Index)i];
+      EXPECT_LT(std::fabs(z), 4.0) << param_name(id) << " seed " << seed;
+      sum2[i] += z * z / 6.0;
+    }
+    if (seed == 1) {  // the estimated noise is the injected one, pooled over records
+      double s2 = 0;
+      for (const Record &rec : recs) {
+        double fmax = 0;
+        for (double F : rec.F) fmax = std::fmax(fmax, std::fabs(F));
+        s2 += (0.01 * fmax) * (0.01 * fmax) / recs.size();
+      }
+      EXPECT_NEAR(r.uncertainty.noise_sigma / std::sqrt(s2), 1.0, 0.1);
+    }
   }
-  // The estimated noise is the injected one: 1% of each record's max |F|,
-  // pooled over the (equal-length) records.
-  double s2 = 0;
-  for (const Record &rec : recs) {
-    double fmax = 0;
-    for (double F : rec.F) fmax = std::fmax(fmax, std::fabs(F));
-    s2 += (0.01 * fmax) * (0.01 * fmax) / recs.size();
-  }
-  EXPECT_NEAR(r.uncertainty.noise_sigma / std::sqrt(s2), 1.0, 0.1);
+  for (size_t i = 0; i < 5; ++i) EXPECT_LE(std::sqrt(sum2[i]), 2.0) << param_name(ParamId(i));
 }
 
 TEST(StsInit, InversionRecoversStsParametersOnStsLoop) {

@@ -75,8 +75,18 @@ nlohmann::ordered_json diagnosis_json(const DiagnoseResult &R, const std::vector
     nlohmann::ordered_json e;
     e["name"] = c.cand.name;
     e["physical"] = c.cand.physical;
-    e["params"] = ext_params_json(c.fit);
-    e["error_fit"] = num(c.fit.error);
+    e["fitted_jointly"] = c.joint;
+    std::string amp = c.cand.extra.empty() ? (c.cand.delay ? "delay" : "offset")
+                                           : param_name(c.cand.extra[0]);
+    if (c.joint) {
+      e["params"] = ext_params_json(c.fit);
+      e["error_fit"] = num(c.fit.error);
+    } else {  // screened out: the score-test estimate, RT held at the baseline
+      e["params"] = {{amp, {{"value", c.screen.value}}}};
+      e["error_fit"] = num(R.baseline_error_fit * std::sqrt(std::fmax(0.0, 1.0 - c.screen.dJ)));
+    }
+    e["screen"] = {{"amplitude", c.screen.value}, {"z", num(c.screen.z)},
+                   {"misfit_reduction", num(c.screen.dJ)}, {"plausible", c.screen.plausible}};
     e["error_holdout"] = num(c.error_holdout);
     e["criterion"] = {{"delta_bic", num(c.dbic)}, {"holdout_gain", num(c.gain)},
                       {"amplitude_z", num(c.amplitude_z)}};

@@ -64,7 +64,8 @@ Columns screen_columns(const ExtModel &m, const std::vector<Record> &recs, const
 // the effect the baseline fit has already absorbed (e.g. relaxation taken by
 // the RT cells) is re-optimized rather than counted against the candidate.
 // The candidate's amplitude is the last unknown.
-void joint_linear(const Columns &rt, const Eigen::MatrixXd &g, CandidateScreen &s) {
+void joint_linear(const Columns &rt, const Eigen::MatrixXd &g, CandidateScreen &s,
+                  Eigen::VectorXd *rt_step = nullptr) {
   const Eigen::Index m = rt.r.size(), P = rt.g.cols(), q = g.cols();
   Eigen::MatrixXd A(m, P + q);
   A << rt.g, g;
@@ -81,6 +82,21 @@ void joint_linear(const Columns &rt, const Eigen::MatrixXd &g, CandidateScreen &
   const Eigen::VectorXd e = Eigen::VectorXd::Unit(P + q, P);
   const double var = s2 * e.dot(ldlt.solve(e)) / (cs[P] * cs[P]);
   s.z = var > 0 ? std::fabs(s.value) / std::sqrt(var) : 0.0;
+  if (rt_step) *rt_step = th.head(P).cwiseQuotient(cs.head(P));
+}
+
+// Move the RT parameters by the linearized step that accompanies the
+// candidate's term (the baseline had bent them to absorb the effect), in
+// log coordinates and by at most +-50%.
+void apply_rt_step(const Eigen::VectorXd &d, rtb_params &p) {
+  const std::vector<ParamId> ids = core_params();
+  for (size_t i = 0; i < ids.size() && (Eigen::Index)i < d.size(); ++i) {
+    double &v = param_ref(p, ids[i]);
+    if (v <= 0.0) continue;
+    const double rel = std::max(-0.5, std::min(0.5, d[(Eigen::Index)i] / v));
+    v *= std::exp(rel);
+  }
+  p.alpha = std::min(p.alpha, 0.95);
 }
 
 CandidateScreen screen_candidate(const Candidate &c, const ExtModel &base,
@@ -106,38 +122,51 @@ CandidateScreen screen_candidate(const Candidate &c, const ExtModel &base,
         s.start = m;
       }
     }
+    if (s.dJ == 0.0) {  // no positive stiffness helps at any tau: report the best anyway
+      ExtModel m = base;
+      m.p.maxwell_tau = 0.1 * sc.duration;
+      joint_linear(rt, screen_columns(m, fit, opt, spec).g, s);
+      s.start = m;
+    }
     s.plausible = s.value > 0.0;
     s.start.p.maxwell_k = s.plausible ? s.value : 0.1 * sc.Ksec;
     return s;
   }
   if (c.name == "backlash") {
-    // Not differentiable at g = 0: a short fit of g alone from a small gap.
-    ExtFitSpec one = spec;
-    one.max_iter = 8;
+    // Not differentiable at g = 0: a short joint fit (RT + g) from a small
+    // gap; with RT held the baseline's compensation would hide the gap.
+    ExtFitSpec one = candidate_spec(c, sc);
+    one.max_iter = 6;
     ExtModel m = base;
     m.p.backlash = 0.02 * sc.Xmax;
     const ExtFitResult f = fit_extended(fit, m, one, opt);
     const double r2 = rt.r.squaredNorm();
     s.value = f.model.p.backlash;
     s.dJ = r2 > 0 ? std::max(0.0, 1.0 - f.J / (0.5 * r2)) : 0.0;
-    s.z = f.stddev_valid && f.stddev[0] > 0 ? s.value / f.stddev[0] : 0.0;
+    const Eigen::Index gi = (Eigen::Index)one.free.size() - 1;
+    s.z = f.stddev_valid && f.stddev[gi] > 0 ? s.value / f.stddev[gi] : 0.0;
     s.start = f.model;
     return s;
   }
-  joint_linear(rt, screen_columns(base, fit, opt, spec).g, s);
+  Eigen::VectorXd rt_step;
+  joint_linear(rt, screen_columns(base, fit, opt, spec).g, s, &rt_step);
+  apply_rt_step(rt_step, s.start.p);
   if (!c.extra.empty()) {
     const ParamId id = c.extra[0];
     const bool positive = id == P_viscous_c || id == P_mass || id == P_mullins;
     s.plausible = !positive || s.value > 0.0;
     double v = s.value;
-    if (id == P_mullins) v = std::min(std::max(v, 1e-3), 0.9);
-    if (id == P_k_asym) v = std::max(-0.9 * base.p.K0, std::min(0.9 * base.p.K0, v));
-    if (positive && !(v > 0.0)) v = 1e-6;
+    // A wrong-signed screen (the baseline absorbed part of the effect) still
+    // gets a joint fit if it ranks high, from a default positive size.
+    if (id == P_mullins) v = v > 0.0 ? std::min(v, 0.9) : 0.1;
+    if (id == P_k_asym) v = std::max(-0.9 * s.start.p.K0, std::min(0.9 * s.start.p.K0, v));
+    if (id == P_viscous_c && !(v > 0.0)) v = 0.02 * sc.Fmax / sc.Vmax;
+    if (id == P_mass && !(v > 0.0)) v = 0.02 * sc.Fmax / sc.Amax;
     param_ref(s.start.p, id) = v;
   }
   if (c.delay) {
     s.plausible = s.value > 0.0;  // the force channel lags, by definition
-    s.start.delay = s.value > 0.0 ? s.value : sc.dt;
+    s.start.delay = s.value > 0.0 ? s.value : 2.0 * sc.dt;
   }
   if (c.offset) s.start.offset = s.value;
   return s;
@@ -200,7 +229,7 @@ DiagnoseResult diagnose(const std::vector<Record> &fit, const std::vector<Record
   // 3b. Joint fits of the most promising candidates.
   std::vector<size_t> order;
   for (size_t i = 0; i < out.size(); ++i)
-    if (out[i].screen.plausible && out[i].screen.z >= opt.min_z) order.push_back(i);
+    if (out[i].screen.z >= opt.min_z) order.push_back(i);
   std::sort(order.begin(), order.end(),
             [&](size_t p, size_t q) { return out[p].screen.dJ > out[q].screen.dJ; });
   if ((int)order.size() > opt.joint_fits) order.resize((size_t)opt.joint_fits);
@@ -219,9 +248,8 @@ DiagnoseResult diagnose(const std::vector<Record> &fit, const std::vector<Record
     if (!co.joint) {
       co.error_holdout = NAN;
       co.fit.error = NAN;
-      co.why = !co.screen.plausible ? "screened out: effect of impossible sign"
-               : co.screen.z < opt.min_z ? "screened out: effect not significant"
-                                          : "screened out: smaller misfit reduction than others";
+      co.why = co.screen.z < opt.min_z ? "screened out: effect not significant"
+                                        : "screened out: smaller misfit reduction than others";
       R.candidates.push_back(co);
       continue;
     }

@@ -35,7 +35,7 @@ struct DiagnoseOptions {
   double min_z = 3.0;
   double trim = 0.005;      // fraction of largest held-out residuals ignored when selecting
   int threads = 2;
-  int joint_fits = 3;       // candidates fitted jointly after screening
+  int joint_fits = 4;       // candidates fitted jointly after screening
   bool quiet = true;
   std::vector<std::string> only;  // restrict the candidates (empty = all)
 };

