@@ -138,5 +138,14 @@ bool parse_or_help(const CommandSpec &spec, int argc, char **argv, Args &out) {
   return false;
 }
 
+SimOptions sim_options_from(const Args &a) {
+  SimOptions opt;
+  if (a.has("ramp-time")) {
+    opt.ramp_time = a.get_double("ramp-time", 0.0);
+    if (!(opt.ramp_time > 0.0)) throw UsageError("--ramp-time must be > 0 (omit it for automatic)");
+  }
+  return opt;
+}
+
 }  // namespace cli
 }  // namespace rtb

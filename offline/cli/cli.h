@@ -15,6 +15,8 @@
 #include <string>
 #include <vector>
 
+#include "rtb_offline.h"
+
 namespace rtb {
 namespace cli {
 
@@ -98,6 +100,9 @@ std::string help_text(const CommandSpec &spec);
 
 // Convenience: parse, print help if asked (returns true: caller returns 0).
 bool parse_or_help(const CommandSpec &spec, int argc, char **argv, Args &out);
+
+// The forward-model options shared by the subcommands (--ramp-time).
+SimOptions sim_options_from(const Args &a);
 
 }  // namespace cli
 }  // namespace rtb

@@ -30,11 +30,7 @@ int run_simulate(int argc, char **argv) {
   Args a;
   if (parse_or_help(spec, argc, argv, a)) return kExitOk;
 
-  SimOptions opt;
-  if (a.has("ramp-time")) {
-    opt.ramp_time = a.get_double("ramp-time", 0.0);
-    if (!(opt.ramp_time > 0.0)) throw UsageError("--ramp-time must be > 0 (omit it for automatic)");
-  }
+  const SimOptions opt = sim_options_from(a);
   const std::string params_path = a.get("params");
   const std::string in_path = a.get("input");
   const std::string out_path = a.get("out");

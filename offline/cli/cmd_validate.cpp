@@ -43,11 +43,7 @@ int run_validate(int argc, char **argv) {
   Args a;
   if (parse_or_help(spec, argc, argv, a)) return kExitOk;
 
-  SimOptions opt;
-  if (a.has("ramp-time")) {
-    opt.ramp_time = a.get_double("ramp-time", 0.0);
-    if (!(opt.ramp_time > 0.0)) throw UsageError("--ramp-time must be > 0 (omit it for automatic)");
-  }
+  const SimOptions opt = sim_options_from(a);
   const std::string params_path = a.get("params");
   const rtb_params p = read_params_json(params_path);
 

@@ -53,7 +53,7 @@ FitSetup parse_fit_setup(const Args &a) {
   fs.opt.method = parse_method(a.get("method", "trust-region"));
   fs.opt.misfit.fit_from = a.get_double("fit-from", 0.0);
   if (fs.opt.misfit.fit_from < 0.0) throw UsageError("--fit-from must be >= 0");
-  if (a.has("ramp-time")) fs.opt.misfit.sim.ramp_time = a.get_double("ramp-time", 0.0);
+  fs.opt.misfit.sim = sim_options_from(a);
   fs.opt.max_iter = (int)a.get_int("max-iter", 200);
   if (a.has("free")) fs.opt.free = parse_param_list(a.get("free"));
   fs.alpha0 = a.get_double("alpha0", 0.2);
