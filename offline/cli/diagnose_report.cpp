@@ -69,6 +69,8 @@ nlohmann::ordered_json diagnosis_json(const DiagnoseResult &R, const std::vector
   if (R.chosen >= 0) ext["fitted"] = ext_params_json(R.candidates[(size_t)R.chosen].fit);
   j["extended"] = ext;
   j["gain"] = num(R.gain);
+  j["baseline_error_holdout_trimmed"] = num(R.baseline_error_holdout_trimmed);
+  j["selection"] = "lowest trimmed held-out error among candidates with z >= 3, delta BIC >= 10, trimmed gain >= 15%";
   j["holdout_used"] = R.has_holdout;
   nlohmann::ordered_json cs = nlohmann::ordered_json::array();
   for (const CandidateOutcome &c : R.candidates) {
@@ -88,6 +90,7 @@ nlohmann::ordered_json diagnosis_json(const DiagnoseResult &R, const std::vector
     e["screen"] = {{"amplitude", c.screen.value}, {"z", num(c.screen.z)},
                    {"misfit_reduction", num(c.screen.dJ)}, {"plausible", c.screen.plausible}};
     e["error_holdout"] = num(c.error_holdout);
+    e["error_holdout_trimmed"] = num(c.error_holdout_trimmed);
     e["criterion"] = {{"delta_bic", num(c.dbic)}, {"holdout_gain", num(c.gain)},
                       {"amplitude_z", num(c.amplitude_z)}};
     e["eligible"] = c.eligible;

@@ -195,8 +195,9 @@ DiagnoseResult diagnose(const std::vector<Record> &fit, const std::vector<Record
   io.quiet = opt.quiet;
   R.baseline_fit = identify(fit, start, io);
   R.baseline.p = R.baseline_fit.params;
-  double Jb = 0, J0b = 0;
+  double Jb = 0, J0b = 0, Jb_trim = 0;
   R.baseline_error_fit = extended_error(R.baseline, fit, opt.misfit, &Jb, &J0b);
+  extended_error(R.baseline, fit, opt.misfit, &Jb_trim, nullptr, opt.trim);
   const std::vector<Record> &sel = R.has_holdout ? holdout : fit;
   const MisfitOptions &sel_opt = R.has_holdout ? hold_opt : opt.misfit;
   R.baseline_error_holdout = extended_error(R.baseline, sel, sel_opt);
@@ -255,7 +256,11 @@ DiagnoseResult diagnose(const std::vector<Record> &fit, const std::vector<Record
     }
     const double k = (double)(co.cand.extra.size() + co.cand.delay + co.cand.offset);
     const double ms = (double)co.fit.samples;
-    co.dbic = ms * std::log(Jb / co.fit.J) - k * std::log(ms);
+    // On trimmed misfits, like the selection figure: isolated spikes (e.g. at
+    // ideal input corners) must not decide in either direction.
+    double Jc_trim = 0;
+    extended_error(co.fit.model, fit, opt.misfit, &Jc_trim, nullptr, opt.trim);
+    co.dbic = ms * std::log(Jb_trim / Jc_trim) - k * std::log(ms);
     co.error_holdout = extended_error(co.fit.model, sel, sel_opt);
     co.error_holdout_trimmed = extended_error(co.fit.model, sel, sel_opt, nullptr, nullptr, opt.trim);
     co.gain = 1.0 - co.error_holdout_trimmed / R.baseline_error_holdout_trimmed;
@@ -291,9 +296,22 @@ DiagnoseResult diagnose(const std::vector<Record> &fit, const std::vector<Record
   v += std::string("; ") + (R.has_holdout ? "holdout" : "fit") + " error " +
        pct(R.baseline_error_holdout);
   v += std::string(" -> ") + pct(R.extended_error_holdout);
-  char g[64];
+  char g[160];
   std::snprintf(g, sizeof g, " (gain %.0f%%)", 100.0 * R.gain);
   v += g;
+  if (R.chosen >= 0) {
+    // The selection figure: with isolated spikes trimmed it can differ a lot
+    // (e.g. an inertia term at ideal input corners); say so.
+    const CandidateOutcome &c = R.candidates[(size_t)R.chosen];
+    if (std::fabs(c.gain - R.gain) > 0.05) {
+      std::snprintf(g, sizeof g, "; with the largest %.1f%% of residuals trimmed %s -> ",
+                    100.0 * opt.trim, pct(R.baseline_error_holdout_trimmed));
+      v += g;
+      v += pct(c.error_holdout_trimmed);
+      std::snprintf(g, sizeof g, " (gain %.0f%%)", 100.0 * c.gain);
+      v += g;
+    }
+  }
   R.verdict = v;
   R.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return R;

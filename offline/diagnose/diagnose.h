@@ -12,7 +12,9 @@
 // 4. A candidate is eligible when (a) its amplitude parameter is significant
 //    (|value| >= min_z standard deviations), (b) the fit improves by more than
 //    the parameter count can explain (delta BIC >= min_dbic) and (c) the
-//    held-out error drops by at least min_gain (relative). The cause is the
+//    held-out error drops by at least min_gain (relative). (b) and (c) use
+//    misfits with the largest `trim` fraction of squared residuals dropped,
+//    so isolated spikes decide nothing. The cause is the
 //    eligible candidate with the lowest held-out error, or "none".
 #ifndef RTB_OFFLINE_DIAGNOSE_H
 #define RTB_OFFLINE_DIAGNOSE_H
@@ -55,7 +57,7 @@ struct CandidateOutcome {
   ExtFitResult fit;
   double error_holdout = 0.0;
   double error_holdout_trimmed = 0.0;  // selection figure (see DiagnoseOptions::trim)
-  double dbic = 0.0;          // BIC(baseline) - BIC(candidate) on the fit records
+  double dbic = 0.0;          // BIC(baseline) - BIC(candidate), trimmed fit misfits
   double gain = 0.0;          // 1 - trimmed holdout error / baseline's (selection)
   double amplitude_z = 0.0;   // |amplitude parameter| / its standard deviation
   bool eligible = false;

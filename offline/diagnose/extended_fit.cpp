@@ -92,6 +92,8 @@ ExtFitResult fit_extended(const std::vector<Record> &recs, const ExtModel &start
   const double s = 1.0 / std::sqrt(J0);
   SensitivityCache cache;  // accepted trial points reuse their forward run
   cache.prepare(recs);
+  std::vector<std::vector<double>> weights;  // quadrature weights, 0 where masked
+  for (const Record &rec : recs) weights.push_back(quadrature_weights(rec, opt.fit_from));
 
   auto unpack = [&](const Eigen::VectorXd &th) {
     ExtModel m = start;
@@ -117,7 +119,7 @@ ExtFitResult fit_extended(const std::vector<Record> &recs, const ExtModel &start
         Eigen::VectorXd F;
         Eigen::MatrixXd J;
         predict_extended(m, rec, opt.sim, spec, F, jac ? &J : nullptr, &cache);
-        const std::vector<double> w = quadrature_weights(rec, opt.fit_from);
+        const std::vector<double> &w = weights[(size_t)(&rec - &recs[0])];
         for (size_t j = 0; j < rec.F.size(); ++j) {
           if (!(w[j] > 0.0)) continue;
           const double q = s * std::sqrt(w[j]);
@@ -144,10 +146,44 @@ ExtFitResult fit_extended(const std::vector<Record> &recs, const ExtModel &start
   OptOptions oo;
   oo.max_iter = spec.max_iter;
   oo.ftol = 1e-10;
-  const OptResult o = minimize_trust_region(obj, th0, oo);
+  OptResult o = minimize_trust_region(obj, th0, oo);
+  long masked = 0;
+  if (spec.robust_k > 0.0) {
+    // Robust scale of the unweighted residuals at the first fit.
+    const ExtModel m = unpack(o.theta);
+    std::vector<std::vector<double>> res(recs.size());
+    std::vector<double> all;
+    ExtFitSpec none = spec;
+    none.free.clear();
+    none.fit_delay = none.fit_offset = false;
+    for (size_t k = 0; k < recs.size(); ++k) {
+      Eigen::VectorXd F;
+      predict_extended(m, recs[k], opt.sim, none, F, nullptr, nullptr);
+      for (size_t j = 0; j < recs[k].F.size(); ++j) {
+        res[k].push_back(F[(Eigen::Index)j] - recs[k].F[j]);
+        if (weights[k][j] > 0.0) all.push_back(std::fabs(res[k].back()));
+      }
+    }
+    if (!all.empty()) {
+      std::nth_element(all.begin(), all.begin() + all.size() / 2, all.end());
+      const double sigma = 1.4826 * all[all.size() / 2];
+      long count = 0;
+      for (size_t k = 0; k < recs.size(); ++k)
+        for (size_t j = 0; j < res[k].size(); ++j)
+          count += weights[k][j] > 0.0 && std::fabs(res[k][j]) > spec.robust_k * sigma;
+      if (count > 0 && count <= spec.robust_max_fraction * (double)all.size()) {
+        for (size_t k = 0; k < recs.size(); ++k)
+          for (size_t j = 0; j < res[k].size(); ++j)
+            if (std::fabs(res[k][j]) > spec.robust_k * sigma) weights[k][j] = 0.0;
+        masked = count;
+        o = minimize_trust_region(obj, o.theta, oo);
+      }
+    }
+  }
 
   ExtFitResult out;
   out.model = unpack(o.theta);
+  out.masked = masked;
   out.iterations = o.iterations;
   out.converged = o.converged;
   out.error = extended_error(out.model, recs, opt, &out.J, &out.J0);
@@ -173,7 +209,12 @@ ExtFitResult fit_extended(const std::vector<Record> &recs, const ExtModel &start
   if (spec.fit_offset) scale[c] = spec.offset_scale;
   std::vector<double> w;
   std::vector<int> group;
-  row_groups(recs, opt.fit_from, w, group);
+  for (size_t k = 0; k < recs.size(); ++k)
+    for (double v : weights[k])
+      if (v > 0.0) {
+        w.push_back(v);
+        group.push_back((int)k);
+      }
   if (r.size() > nt && (Eigen::Index)w.size() == r.size()) {
     const Eigen::MatrixXd Jp = Jt * scale.cwiseInverse().asDiagonal() / s;  // natural units
     const Eigen::VectorXd rp = r / s;

@@ -28,6 +28,13 @@ struct ExtFitSpec {
   std::array<double, P_COUNT> scale{};  // typical size of signed params starting at 0
   double delay_scale = 1e-3, offset_scale = 1.0;
   int max_iter = 60;
+  // Outlier-robust refit: after a first fit, samples whose residual exceeds
+  // robust_k robust standard deviations (1.4826 MAD) are masked and the fit
+  // repeated, if they are at most robust_max_fraction of the samples (isolated
+  // spikes, e.g. a discrete acceleration at an ideal input corner or a
+  // machine transient); a systematic misfit is never masked. 0 disables.
+  double robust_k = 6.0;
+  double robust_max_fraction = 0.01;
 };
 
 struct ExtFitResult {
@@ -40,6 +47,7 @@ struct ExtFitResult {
   std::vector<std::string> names;  // free parameter names, then delay, offset
   Eigen::VectorXd value, stddev;   // same order as names
   bool stddev_valid = false;
+  long masked = 0;                 // samples masked by the robust refit
 };
 
 // Predicted force at the record's samples and its sensitivities (columns:

@@ -113,6 +113,11 @@ Trajectory run_forward(const rtb_params &p, const DriveGrid &grid, bool keep_tra
   rtb_state s;
   rtb_status st = rtb_state_init(&s, &p, grid.x[0]);
   if (st != RTB_OK) throw std::runtime_error(std::string("rt_bushing: ") + rtb_status_message(st));
+  // A record that starts at x = 0 already moving (a sine from t = 0) did not
+  // start with a velocity jump: start the input-velocity memory (inertia
+  // term) at the record's initial velocity, not at rest, so that m a has no
+  // spurious impulse m v0/dt at the first sample.
+  if (grid.first_sample == 0 && n > 1) s.vx = (grid.x[1] - grid.x[0]) / grid.dt[1];
   tr.force.resize(n);
   tr.force[0] = s.force;
   const size_t S = tr.stride();
