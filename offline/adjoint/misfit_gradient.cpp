@@ -8,6 +8,7 @@
 
 #include "adjoint/step_linearization.h"
 #include "model/forward.h"
+#include "model/misfit_norms.h"
 #include "model/parallel_for.h"
 
 namespace rtb {
@@ -15,14 +16,9 @@ namespace rtb {
 double MisfitValue::error() const { return J0 > 0.0 ? std::sqrt(J / J0) : INFINITY; }
 
 std::vector<double> quadrature_weights(const Record &rec, double fit_from) {
-  const size_t n = rec.t.size();
-  std::vector<double> w(n, 0.0);
+  std::vector<double> w = trapezoid_weights(rec.t);
   const double t_start = rec.t[0] + fit_from;
-  for (size_t j = 0; j < n; ++j) {
-    const double left = j > 0 ? rec.t[j] - rec.t[j - 1] : 0.0;
-    const double right = j + 1 < n ? rec.t[j + 1] - rec.t[j] : 0.0;
-    w[j] = rec.t[j] >= t_start ? 0.5 * (left + right) * rec.weight : 0.0;
-  }
+  for (size_t j = 0; j < w.size(); ++j) w[j] = rec.t[j] >= t_start ? w[j] * rec.weight : 0.0;
   return w;
 }
 

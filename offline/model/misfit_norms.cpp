@@ -22,32 +22,36 @@ double MisfitNorms::nrmse_percent() const {
   return rms > 0.0 ? std::numeric_limits<double>::infinity() : 0.0;
 }
 
+std::vector<double> trapezoid_weights(const std::vector<double> &t) {
+  const size_t n = t.size();
+  std::vector<double> w(n, 0.0);
+  for (size_t j = 0; j < n; ++j) {
+    const double left = j > 0 ? t[j] - t[j - 1] : 0.0;
+    const double right = j + 1 < n ? t[j + 1] - t[j] : 0.0;
+    w[j] = 0.5 * (left + right);
+  }
+  return w;
+}
+
 MisfitNorms misfit_norms(const std::vector<double> &t, const std::vector<double> &F_model,
                          const std::vector<double> &F_exp) {
   const size_t n = t.size();
   if (F_model.size() != n || F_exp.size() != n)
     throw std::invalid_argument("misfit_norms: time, model and measured force differ in length");
   if (n < 2) throw std::invalid_argument("misfit_norms: need at least 2 samples");
+  for (size_t i = 1; i < n; ++i)
+    if (!(t[i] - t[i - 1] > 0.0)) throw std::invalid_argument("misfit_norms: time does not increase");
+  const std::vector<double> w = trapezoid_weights(t);
   MisfitNorms m;
   m.samples = n;
-  double sum_e2 = 0.0;
-  double lo = F_exp[0], hi = F_exp[0];
-  double e_prev = F_model[0] - F_exp[0];
-  double f_prev = F_exp[0];
-  sum_e2 = e_prev * e_prev;
-  for (size_t i = 1; i < n; ++i) {
-    const double dt = t[i] - t[i - 1];
-    if (!(dt > 0.0)) throw std::invalid_argument("misfit_norms: time does not increase");
-    const double e = F_model[i] - F_exp[i];
-    const double f = F_exp[i];
-    // 1/2 * trapezoid of the squared integrand: 1/2 * dt * (a^2 + b^2) / 2.
-    m.J += 0.25 * dt * (e_prev * e_prev + e * e);
-    m.J0 += 0.25 * dt * (f_prev * f_prev + f * f);
+  double sum_e2 = 0.0, lo = F_exp[0], hi = F_exp[0];
+  for (size_t i = 0; i < n; ++i) {
+    const double e = F_model[i] - F_exp[i], f = F_exp[i];
+    m.J += 0.5 * w[i] * e * e;    // eq. (11) without the Tikhonov term
+    m.J0 += 0.5 * w[i] * f * f;   // eq. (27)
     sum_e2 += e * e;
     lo = std::min(lo, f);
     hi = std::max(hi, f);
-    e_prev = e;
-    f_prev = f;
   }
   m.rms = std::sqrt(sum_e2 / (double)n);
   m.range = hi - lo;

@@ -24,6 +24,11 @@ struct MisfitNorms {
   double nrmse_percent() const;
 };
 
+// Trapezoidal quadrature weights of a time grid: int g dt ~ sum w_j g(t_j),
+// w_j = (t_{j+1} - t_{j-1}) / 2 inside, half intervals at the ends. The one
+// implementation of the integrals of eq. (11) and (27).
+std::vector<double> trapezoid_weights(const std::vector<double> &t);
+
 // All three vectors have the same length (>= 2) and t strictly increases.
 // Throws std::invalid_argument otherwise.
 MisfitNorms misfit_norms(const std::vector<double> &t, const std::vector<double> &F_model,
