@@ -86,9 +86,15 @@ demo: build
 	@if [ ! -x $(BUILD)/rtb ]; then echo "$(BUILD)/rtb was not built (offline/main.cpp missing?)"; exit 1; fi
 	./$(BUILD)/rtb demo
 
+# The real-data studies need the measured data next to the repository.
+DATA_DIR ?= ../shared/data
 report: build
 	@if [ ! -x $(BUILD)/rtb ]; then echo "$(BUILD)/rtb was not built (offline/main.cpp missing?)"; exit 1; fi
-	./$(BUILD)/rtb report
+	@if [ ! -d "$(DATA_DIR)" ]; then \
+	  echo "make report: the measured data folder $(DATA_DIR) is missing."; \
+	  echo "  It holds the friction-damper and VHB 4910 records (see docs/results/ for what they give)."; \
+	  echo "  Put it there or run: make report DATA_DIR=/path/to/data"; exit 1; fi
+	./$(BUILD)/rtb report --data-dir "$(DATA_DIR)" --out-dir docs/results
 
 bench: build
 	@if [ ! -x $(BUILD)/bench/rtb_bench ]; then echo "$(BUILD)/bench/rtb_bench was not built (no bench/*_bench.cpp?)"; exit 1; fi

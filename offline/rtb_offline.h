@@ -31,6 +31,7 @@ struct Record {
   std::string sha256;               // of the file bytes, hex ("" if generated)
   std::vector<double> t, x, F;      // time, displacement, force (same length)
   double weight = 1.0;              // per-record weight in the misfit
+  std::vector<unsigned char> masked;  // 1: sample excluded from the misfit (empty: none)
 };
 
 // CSV: '#' comment lines, a header naming time, displacement, force (any
@@ -57,7 +58,8 @@ std::string sha256_file(const std::string &path);
 // Parameter JSON: {"model":"rt"|"sts","cells":15,"integrator":"sdirk2"|"be",
 //   "params":{"K0":..,"Kpa":..,"Kr":..,"C0":..,"alpha":.., optional
 //   extensions "k3","k_asym","maxwell_k","maxwell_tau","viscous_c","mass",
-//   "backlash","mullins"; STS: "Ff"}}. Throws InputError on a missing,
+//   "backlash","mullins","sat_force","sat_disp"; STS: "Ff"}, optional
+//   top-level "smoothing" (eq. (14), 0 = off)}. Throws InputError on a missing,
 // non-numeric, negative or out-of-range value (alpha outside (0,1) named).
 rtb_params read_params_json(const std::string &path);
 rtb_params params_from_json_text(const std::string &text, const std::string &origin);
@@ -69,6 +71,7 @@ std::string params_to_json_text(const rtb_params &p);
 enum ParamId {
   P_K0, P_Kpa, P_Kr, P_C0, P_alpha,
   P_k3, P_k_asym, P_maxwell_k, P_maxwell_tau, P_viscous_c, P_mass, P_backlash, P_mullins,
+  P_sat_force, P_sat_disp,
   P_COUNT
 };
 const char *param_name(ParamId id);          // "K0", "Kpa", ... as in the JSON

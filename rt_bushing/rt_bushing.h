@@ -28,10 +28,11 @@ extern "C" {
 /* Types                                                               */
 /* ------------------------------------------------------------------ */
 
-#define RTB_ABI_VERSION 1     /* bumped on any layout change of the structs */
+#define RTB_ABI_VERSION 2     /* bumped on any layout change of the structs
+                                 (2: `smoothing`, `sat_force`, `sat_disp` took reserved[0..2]) */
 #define RTB_MAX_CELLS 32      /* capacity of rtb_state; N = 1 .. RTB_MAX_CELLS */
 #define RTB_DEFAULT_CELLS 15  /* the paper's choice (section 3.4) */
-#define RTB_N_RESERVED 16
+#define RTB_N_RESERVED 13
 
 typedef double rtb_real;
 #define RTB_SCALAR_BYTES 8    /* sizeof(rtb_real); checked by generated headers */
@@ -106,6 +107,21 @@ typedef struct rtb_params {
   rtb_real backlash;    /* total clearance g in series, >= 0     [length] */
   rtb_real mullins;     /* Mullins softening fraction mu in [0, 1) of K0 below
                            the prior maximum |xb| */
+
+  /* Model setting, not a physical parameter (ABI 2, from reserved[0]). */
+  rtb_real smoothing;   /* s of the paper's sigmoid smoothing, eq. (14), >= 0
+                           [time/length] (1/velocity); 0 = off (default, exact
+                           eq. (1)). s > 0 replaces the RT dashpot law by
+                           f = C0 sign_s(v) |v|_s^alpha. Not needed by this
+                           stepper (see README); kept to reproduce the paper's
+                           Table 1. Ignored by RTB_MODEL_STS. */
+
+  /* Softening (saturating) spring, ABI 2 from reserved[1..2]:
+   * F += sat_force tanh(xb / sat_disp). Initial stiffness sat_force/sat_disp,
+   * saturating at sat_force: with K0 and k3 an elastic law that softens then
+   * stiffens (elastomers at large strain, issue #5). Off when sat_force = 0. */
+  rtb_real sat_force;   /* >= 0                                   [force] */
+  rtb_real sat_disp;    /* > 0 when sat_force > 0                 [length] */
   rtb_real reserved[RTB_N_RESERVED];
 } rtb_params;
 

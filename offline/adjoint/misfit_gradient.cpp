@@ -19,6 +19,9 @@ std::vector<double> quadrature_weights(const Record &rec, double fit_from) {
   std::vector<double> w = trapezoid_weights(rec.t);
   const double t_start = rec.t[0] + fit_from;
   for (size_t j = 0; j < w.size(); ++j) w[j] = rec.t[j] >= t_start ? w[j] * rec.weight : 0.0;
+  if (!rec.masked.empty())
+    for (size_t j = 0; j < w.size(); ++j)
+      if (rec.masked[j]) w[j] = 0.0;
   return w;
 }
 

@@ -17,11 +17,14 @@ constexpr double kGamma = RTB_SDIRK_GAMMA;
 constexpr double kRho = (1.0 - kGamma) / kGamma;  // c2 = y + rho (Y1 - y)
 
 // ------------------------------------------------------------- one stage
+// The dashpot derivatives (D = dv/df, dv/dC0 and dv/dalpha at fixed f) come
+// from dashpot_law.h: eq. (1), or eq. (14) when p.smoothing > 0. The
+// smoothing s itself is a fixed model setting, not a parameter: no dp entry.
 // Stage matrix A = I + h D K (transpose = false) or A^T = I + h K D.
 void stage_matrix(const rtb_params &p, const StageView &st, bool transpose, double *lo,
                   double *di, double *up, double *D) {
   const int n = p.cells;
-  for (int k = 0; k < n; ++k) D[k] = rtb_law_dvdf(st.f[k], st.v[k], p.alpha);
+  for (int k = 0; k < n; ++k) D[k] = rtb_dashpot_dvdf(st.f[k], st.v[k], p.C0, p.alpha, p.smoothing);
   for (int k = 0; k < n; ++k) {
     di[k] = 1.0 + st.h * D[k] * rtb_chain_diag(k, p.Kpa, p.Kr);
     const int l = transpose ? k - 1 : k, u = transpose ? k + 1 : k;
@@ -48,8 +51,9 @@ void stage_jvp(const rtb_params &p, const StageView &st, const double *dc, doubl
   for (int k = 0; k < n; ++k) {
     const double dKY = dp[P_Kr] * dK_dKr_row(st, k, n) + (k == 0 ? dp[P_Kpa] * st.y[0] : 0.0);
     dY[k] = dc[k] + st.h * D[k] * ((k == 0 ? db1 : 0.0) - dKY) +
-            st.h * (rtb_law_dv_dC0(st.v[k], p.C0, p.alpha) * dp[P_C0] +
-                    rtb_law_dv_dalpha(st.f[k], st.v[k], p.C0, p.alpha) * dp[P_alpha]);
+            st.h * (rtb_dashpot_dv_dC0(st.f[k], st.v[k], p.C0, p.alpha, p.smoothing) * dp[P_C0] +
+                    rtb_dashpot_dv_dalpha(st.f[k], st.v[k], p.C0, p.alpha, p.smoothing) *
+                        dp[P_alpha]);
   }
   rtb_tridiag_solve(n, lo, di, up, dY, work);
 }
@@ -66,8 +70,9 @@ double stage_vjp(const rtb_params &p, const StageView &st, const double *Ybar, d
   for (int k = 0; k < n; ++k) {
     cbar[k] += mu[k];
     pbar[P_Kr] -= st.h * D[k] * mu[k] * dK_dKr_row(st, k, n);
-    pbar[P_C0] += st.h * mu[k] * rtb_law_dv_dC0(st.v[k], p.C0, p.alpha);
-    pbar[P_alpha] += st.h * mu[k] * rtb_law_dv_dalpha(st.f[k], st.v[k], p.C0, p.alpha);
+    pbar[P_C0] += st.h * mu[k] * rtb_dashpot_dv_dC0(st.f[k], st.v[k], p.C0, p.alpha, p.smoothing);
+    pbar[P_alpha] +=
+        st.h * mu[k] * rtb_dashpot_dv_dalpha(st.f[k], st.v[k], p.C0, p.alpha, p.smoothing);
   }
   pbar[P_Kpa] -= st.h * D[0] * mu[0] * st.y[0];
   return st.h * D[0] * mu[0];
@@ -109,8 +114,13 @@ ForceLin force_lin(const StepView &v, bool with_inertia) {
   const double eta = (p.mullins > 0.0 && below) ? 1.0 + p.mullins * deta_dmu : 1.0;
   const double deta_dxb = (p.mullins > 0.0 && below) ? p.mullins * sgn / m : 0.0;
   const double deta_dm = (p.mullins > 0.0 && below) ? -p.mullins * ax / (m * m) : 0.0;
+  // Softening spring Fs tanh(xb/xs): d/dxb = Fs/xs sech^2, d/dFs = tanh,
+  // d/dxs = -Fs sech^2 xb/xs^2 (sech^2 = 1 - tanh^2).
+  const double xs = p.sat_disp, th = xs > 0.0 ? std::tanh(xb / xs) : 0.0, sech2 = 1.0 - th * th;
   L.xb_new = p.K0 * (eta + xb * deta_dxb) + p.Kpa + 3.0 * p.k3 * xb * xb + p.k_asym * sgn +
-             p.maxwell_k + p.viscous_c / dt;
+             p.maxwell_k + p.viscous_c / dt + (xs > 0.0 ? p.sat_force / xs * sech2 : 0.0);
+  L.g[P_sat_force] = th;
+  L.g[P_sat_disp] = xs > 0.0 ? -p.sat_force * sech2 * xb / (xs * xs) : 0.0;
   L.xb_old = -p.viscous_c / dt;
   L.m_old = p.K0 * xb * deta_dm;
   L.g[P_K0] = xb * eta;

@@ -20,7 +20,7 @@ int run_diagnose(int argc, char **argv) {
       "diagnose",
       "Fit the RT model, analyse its residuals, try every extension of the\n"
       "vocabulary (cubic_stiffness, asymmetry, maxwell, viscous, backlash, mullins,\n"
-      "delay, inertia, offset) and name the cause that explains the held-out\n"
+      "delay, inertia, offset, softening) and name the cause that explains the held-out\n"
       "records best, or none.",
       {
           {"data", "FILE", "fit record CSV; repeat for several", true, true},
@@ -38,8 +38,14 @@ int run_diagnose(int argc, char **argv) {
       },
       "delay and offset are measurement-chain artefacts: they are estimated and\n"
       "corrected in the data, never put into the real-time element."};
+  static const CommandSpec full = [] {
+    CommandSpec c = spec;
+    const std::vector<OptionSpec> pre = preprocess_option_specs();
+    c.options.insert(c.options.end(), pre.begin(), pre.end());
+    return c;
+  }();
   Args a;
-  if (parse_or_help(spec, argc, argv, a)) return kExitOk;
+  if (parse_or_help(full, argc, argv, a)) return kExitOk;
   DiagnoseOptions o;
   o.cells = (int)a.get_int("cells", RTB_DEFAULT_CELLS);
   if (o.cells < 1 || o.cells > RTB_MAX_CELLS) throw UsageError("--cells out of range");
@@ -65,9 +71,16 @@ int run_diagnose(int argc, char **argv) {
   if (a.has("holdout"))
     for (const std::string &p : a.all("holdout")) hold.push_back(read_record_csv(p));
 
+  // Same preprocessing for held-out records, except the fit weights.
+  const Preprocess pre = preprocess_from(a);
+  apply_preprocess(pre, fit, true);
+  apply_preprocess(pre, hold, false);
+
   const DiagnoseResult R = diagnose(fit, hold, o);
   print_diagnosis(R);
-  write_file_atomic(a.get("out"), diagnosis_json(R, fit, hold).dump(2) + "\n");
+  nlohmann::ordered_json report = diagnosis_json(R, fit, hold);
+  report["preprocessing"] = preprocess_json(pre);
+  write_file_atomic(a.get("out"), report.dump(2) + "\n");
   if (a.has("header")) write_file_atomic(a.get("header"), diagnosis_header(R, fit, name));
   if (a.has("plot-dir")) write_diagnosis_plots(R, fit, hold, a.get("plot-dir"));
   return kExitOk;

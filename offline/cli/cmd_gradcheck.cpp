@@ -24,13 +24,16 @@ int run_gradcheck(int argc, char **argv) {
           {"free", "LIST", "parameters to check (default: every nonzero one)"},
           {"fit-from", "S", "mask samples before t0 + S"},
           {"out", "FILE", "write the figures as JSON"},
+          {"smoothing", "S", "eq. (14) sigmoid smoothing s [1/velocity] (default: the file's, 0 = off)"},
       },
       "FD: Richardson-extrapolated central differences with relative step 1e-4, the\n"
       "stepper at Newton tolerance 1e-15. rel = |adjoint - FD| / |FD| (components\n"
       "below 1e-8 of the largest scaled component are judged against that floor)."};
   Args a;
   if (parse_or_help(spec, argc, argv, a)) return kExitOk;
-  const rtb_params p = read_params_json(a.get("params"));
+  rtb_params p = read_params_json(a.get("params"));
+  p.smoothing = a.get_double("smoothing", p.smoothing);  // eq. (14); finite by get_double
+  if (p.smoothing < 0.0) throw UsageError("--smoothing must be >= 0 (0 = off)");
   if (p.model != RTB_MODEL_RT) throw InputError(a.get("params") + ": gradcheck needs an \"rt\" model");
   std::vector<Record> recs;
   for (const std::string &path : a.all("data")) recs.push_back(read_record_csv(path));

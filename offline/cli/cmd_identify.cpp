@@ -25,6 +25,7 @@ int run_identify(int argc, char **argv) {
           {"out", "FILE", "parameter JSON with fit, uncertainty and provenance", true},
           {"header", "FILE", "also emit the C parameter header"},
           {"name", "IDENT", "name of the constant in the header (default rtb_identified)"},
+          {"smoothing", "S", "fit the eq. (14) smoothed model, s [1/velocity] (default 0 = off)"},
       }),
       "--init sts (default) derives the start from the STS loop features, eq. (17)-(26),\n"
       "and prints them (the paper's Table 5). Records that do not start at x = 0 are\n"
@@ -32,6 +33,8 @@ int run_identify(int argc, char **argv) {
   Args a;
   if (parse_or_help(spec, argc, argv, a)) return kExitOk;
   FitSetup fs = parse_fit_setup(a);
+  fs.start.smoothing = a.get_double("smoothing", fs.start.smoothing);  // eq. (14); a setting
+  if (fs.start.smoothing < 0.0) throw UsageError("--smoothing must be >= 0 (0 = off)");
   if (a.has("name")) {
     std::string why;
     if (!is_valid_header_name(a.get("name"), &why)) throw UsageError("--name: " + why);

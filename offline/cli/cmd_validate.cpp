@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "cli/cli.h"
+#include "cli/fit_common.h"
 #include "io/csv.h"
 #include "io/params_json.h"
 #include "model/forward.h"
@@ -40,8 +41,14 @@ int run_validate(int argc, char **argv) {
       },
       "overall error = sqrt(sum J / sum J0) over all files.\n"
       "NRMSE = 100 * RMS(F_model - F_exp) / (max F_exp - min F_exp), per sample."};
+  static const CommandSpec full = [] {
+    CommandSpec c = spec;
+    const std::vector<OptionSpec> pre = preprocess_option_specs();
+    c.options.insert(c.options.end(), pre.begin(), pre.end());
+    return c;
+  }();
   Args a;
-  if (parse_or_help(spec, argc, argv, a)) return kExitOk;
+  if (parse_or_help(full, argc, argv, a)) return kExitOk;
 
   const SimOptions opt = sim_options_from(a);
   const std::string params_path = a.get("params");
@@ -50,6 +57,8 @@ int run_validate(int argc, char **argv) {
   // Read every file first: an input error anywhere stops before any work.
   std::vector<Record> recs;
   for (const std::string &path : a.all("data")) recs.push_back(read_record_csv(path));
+  const Preprocess pre = preprocess_from(a);
+  apply_preprocess(pre, recs, true);
 
   std::vector<MisfitNorms> norms;
   int not_converged = 0;
@@ -58,9 +67,11 @@ int run_validate(int argc, char **argv) {
     const Trajectory tr = run_forward(p, grid, false);
     not_converged += tr.not_converged;
     const std::vector<double> F(tr.force.begin() + grid.first_sample, tr.force.end());
-    norms.push_back(misfit_norms(rec.t, F, rec.F));
+    norms.push_back(misfit_norms(rec.t, F, rec.F, rec.masked));
   }
-  const double overall = combined_relative_error(norms);
+  std::vector<double> weights;
+  for (const Record &rec : recs) weights.push_back(rec.weight);
+  const double overall = combined_relative_error(norms, weights);
 
   if (!a.has("quiet")) {
     size_t w = 4;
@@ -96,6 +107,7 @@ int run_validate(int argc, char **argv) {
       files.push_back(f);
     }
     j["files"] = files;
+    j["preprocessing"] = preprocess_json(pre);
     write_file_atomic(a.get("out"), j.dump(2) + "\n");
   }
   return kExitOk;

@@ -26,6 +26,8 @@ static const std::vector<Subcommand> kSubcommands = {
      run_validate},
     {"gradcheck", "adjoint gradient vs finite differences, and the dot-product test",
      run_gradcheck},
+    {"report", "real-data studies and paper figures into docs/results (make report)", run_report},
+    {"paper-figures", "reproduce the paper's Figures 5, 6, 8, 9 as PNGs plus Markdown", run_paper_figures},
     {"info", "library version, ABI, capacity and scalar type", run_info},
 };
 

@@ -24,6 +24,8 @@ std::vector<OptionSpec> fit_option_specs(std::vector<OptionSpec> extra) {
       {"max-iter", "N", "optimizer iteration limit (default 200)"},
       {"quiet", nullptr, "no progress on stderr"},
   };
+  const std::vector<OptionSpec> pre = preprocess_option_specs();
+  o.insert(o.end(), pre.begin(), pre.end());
   o.insert(o.end(), extra.begin(), extra.end());
   return o;
 }
@@ -59,6 +61,8 @@ FitSetup parse_fit_setup(const Args &a) {
   fs.alpha0 = a.get_double("alpha0", 0.2);
   if (!(fs.alpha0 > 0.0 && fs.alpha0 < 1.0)) throw UsageError("--alpha0 must be in (0,1)");
   for (const std::string &path : a.all("data")) fs.recs.push_back(read_record_csv(path));
+  fs.pre = preprocess_from(a);
+  apply_preprocess(fs.pre, fs.recs, true);
   fs.init = a.get("init", "sts");
   if (fs.init == "sts") {
     fs.start = sts_initial_guess(fs.recs, (int)cells, fs.alpha0, fs.opt.misfit.fit_from,
@@ -160,6 +164,7 @@ nlohmann::ordered_json fit_result_json(const IdentifyResult &r, const FitSetup &
   j["options"] = {{"fit_from", fs.opt.misfit.fit_from},
                   {"ramp_time", fs.opt.misfit.sim.ramp_time},
                   {"reg_weight", fs.reg_weight}};
+  j["preprocessing"] = preprocess_json(fs.pre);
   j["tool"] = tool_version();
   return j;
 }
@@ -182,6 +187,8 @@ HeaderInfo header_info_for(const IdentifyResult &r, const FitSetup &fs, const st
       hi.std_devs[param_name(r.uncertainty.ids[i])] = r.uncertainty.stddev[(Eigen::Index)i];
   hi.provenance.push_back(std::string("method ") + method_name(r.method) + ", " +
                           std::to_string(r.iterations) + " iterations");
+  if (fs.pre.active())
+    hi.provenance.push_back("preprocessing " + preprocess_json(fs.pre).dump());
   return hi;
 }
 

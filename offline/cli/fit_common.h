@@ -11,6 +11,7 @@
 #include "identify/identify.h"
 #include "identify/sts_init.h"
 #include "io/header_writer.h"
+#include "preprocess/preprocess.h"
 
 namespace rtb {
 namespace cli {
@@ -26,7 +27,12 @@ struct FitSetup {
   std::string sts_note;
   IdentifyOptions opt;
   double reg_weight = 0.0;
+  Preprocess pre;               // applied to recs before the start point
 };
+
+// --scale-*, --lowpass, --mask, --mask-reversals, --weight (preprocess_options.cpp).
+std::vector<OptionSpec> preprocess_option_specs();
+Preprocess preprocess_from(const Args &a);
 
 // The common options: --data, --cells, --method, --init, --alpha0,
 // --fit-from, --ramp-time, --free, --reg-weight, --max-iter, --quiet,

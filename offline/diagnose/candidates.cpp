@@ -53,6 +53,7 @@ const std::vector<Candidate> &candidate_vocabulary() {
       {"delay", false, {}, true, false},
       {"inertia", true, {P_mass}, false, false},
       {"offset", false, {}, false, true},
+      {"softening", true, {P_sat_force, P_sat_disp}, false, false},
   };
   return v;
 }
@@ -91,6 +92,9 @@ std::string describe_effect(const Candidate &c, const ExtModel &m) {
     std::snprintf(b, sizeof b, "force channel delayed by %.4g s", m.delay);
   else if (c.name == "inertia")
     std::snprintf(b, sizeof b, "moving mass m = %.4g", p.mass);
+  else if (c.name == "softening")
+    std::snprintf(b, sizeof b, "softening spring %.4g tanh(x / %.4g) (initial stiffness %.4g)",
+                  p.sat_force, p.sat_disp, p.sat_disp > 0 ? p.sat_force / p.sat_disp : 0.0);
   else if (c.name == "offset")
     std::snprintf(b, sizeof b, "force offset of %.4g", m.offset);
   else

@@ -132,14 +132,43 @@ CandidateScreen screen_candidate(const Candidate &c, const ExtModel &base,
     s.start.p.maxwell_k = s.plausible ? s.value : 0.1 * sc.Ksec;
     return s;
   }
+  if (c.name == "softening") {
+    // Linear in the saturation force at fixed width: scan the width over
+    // the stroke, keep the best positive force.
+    spec.free = {P_sat_force};
+    for (double xs : {0.03, 0.1, 0.3, 1.0}) {
+      ExtModel m = base;
+      m.p.sat_disp = xs * sc.Xmax;
+      CandidateScreen t;
+      Eigen::VectorXd step;
+      joint_linear(rt, screen_columns(m, fit, opt, spec).g, t, &step);
+      if (t.value > 0.0 && t.dJ > s.dJ) {
+        s = t;
+        s.start = m;
+        apply_rt_step(step, s.start.p);
+      }
+    }
+    s.plausible = s.value > 0.0;
+    if (s.start.p.sat_disp == 0.0) s.start.p.sat_disp = 0.1 * sc.Xmax;
+    s.start.p.sat_force = s.plausible ? s.value : 0.05 * sc.Fmax;
+    return s;
+  }
   if (c.name == "backlash") {
     // Not differentiable at g = 0: a short joint fit (RT + g) from a small
     // gap; with RT held the baseline's compensation would hide the gap.
+    // Two gap sizes: a clearance much wider than the start is a different
+    // basin (a friction device with a 10%-of-stroke play, e.g.).
     ExtFitSpec one = candidate_spec(c, sc);
     one.max_iter = 6;
-    ExtModel m = base;
-    m.p.backlash = 0.02 * sc.Xmax;
-    const ExtFitResult f = fit_extended(fit, m, one, opt);
+    ExtFitResult f;
+    bool have = false;
+    for (double g : {0.02, 0.1}) {
+      ExtModel m = base;
+      m.p.backlash = g * sc.Xmax;
+      ExtFitResult t = fit_extended(fit, m, one, opt);
+      if (!have || t.J < f.J) f = std::move(t);
+      have = true;
+    }
     const double r2 = rt.r.squaredNorm();
     s.value = f.model.p.backlash;
     s.dJ = r2 > 0 ? std::max(0.0, 1.0 - f.J / (0.5 * r2)) : 0.0;
@@ -194,83 +223,114 @@ DiagnoseResult diagnose(const std::vector<Record> &fit, const std::vector<Record
   io.misfit = opt.misfit;
   io.quiet = opt.quiet;
   R.baseline_fit = identify(fit, start, io);
-  R.baseline.p = R.baseline_fit.params;
-  double Jb = 0, J0b = 0, Jb_trim = 0;
-  R.baseline_error_fit = extended_error(R.baseline, fit, opt.misfit, &Jb, &J0b);
-  extended_error(R.baseline, fit, opt.misfit, &Jb_trim, nullptr, opt.trim);
-  const std::vector<Record> &sel = R.has_holdout ? holdout : fit;
-  const MisfitOptions &sel_opt = R.has_holdout ? hold_opt : opt.misfit;
-  R.baseline_error_holdout = extended_error(R.baseline, sel, sel_opt);
-  R.baseline_error_holdout_trimmed = extended_error(R.baseline, sel, sel_opt, nullptr, nullptr, opt.trim);
-  if (!opt.quiet)
-    std::fprintf(stderr, "diagnose: baseline RT error fit %.3f%%, holdout %.3f%%\n",
-                 100 * R.baseline_error_fit, 100 * R.baseline_error_holdout);
+  // A second round starts here when a candidate's joint fit shows that the
+  // baseline sat in a poor basin (see the end of step 4).
+  for (int round = 0;; ++round) {
+    R.candidates.clear();
+    R.chosen = -1;
+    R.baseline.p = R.baseline_fit.params;
+    double Jb = 0, J0b = 0, Jb_trim = 0;
+    R.baseline_error_fit = extended_error(R.baseline, fit, opt.misfit, &Jb, &J0b);
+    extended_error(R.baseline, fit, opt.misfit, &Jb_trim, nullptr, opt.trim);
+    const std::vector<Record> &sel = R.has_holdout ? holdout : fit;
+    const MisfitOptions &sel_opt = R.has_holdout ? hold_opt : opt.misfit;
+    R.baseline_error_holdout = extended_error(R.baseline, sel, sel_opt);
+    R.baseline_error_holdout_trimmed = extended_error(R.baseline, sel, sel_opt, nullptr, nullptr, opt.trim);
+    if (!opt.quiet)
+      std::fprintf(stderr, "diagnose: baseline RT error fit %.3f%%, holdout %.3f%%\n",
+                   100 * R.baseline_error_fit, 100 * R.baseline_error_holdout);
 
-  // 2. Residuals of the baseline.
-  R.residuals = analyze_residuals(R.baseline, fit, holdout, opt.misfit);
+    // 2. Residuals of the baseline.
+    R.residuals = analyze_residuals(R.baseline, fit, holdout, opt.misfit);
 
-  // 3a. Screening at the baseline.
-  const DataScales sc = data_scales(fit);
-  std::vector<Candidate> cands;
-  for (const Candidate &c : candidate_vocabulary())
-    if (opt.only.empty() || std::find(opt.only.begin(), opt.only.end(), c.name) != opt.only.end())
-      cands.push_back(c);
-  std::vector<CandidateOutcome> out(cands.size());
-  std::vector<size_t> screen_jobs;
-  for (size_t i = 0; i < cands.size(); ++i) {
-    out[i].cand = cands[i];
-    screen_jobs.push_back(i);
-  }
-  ExtFitSpec core;
-  const Columns rt = screen_columns(R.baseline, fit, opt.misfit, core);
-  parallel_for(screen_jobs.size(), opt.threads, [&](size_t k) {
-    const size_t i = screen_jobs[k];
-    out[i].screen = screen_candidate(cands[i], R.baseline, fit, opt.misfit, sc, rt);
-  });
-  // 3b. Joint fits of the most promising candidates.
-  std::vector<size_t> order;
-  for (size_t i = 0; i < out.size(); ++i)
-    if (out[i].screen.z >= opt.min_z) order.push_back(i);
-  std::sort(order.begin(), order.end(),
-            [&](size_t p, size_t q) { return out[p].screen.dJ > out[q].screen.dJ; });
-  if ((int)order.size() > opt.joint_fits) order.resize((size_t)opt.joint_fits);
-  parallel_for(order.size(), opt.threads, [&](size_t k) {
-    CandidateOutcome &co = out[order[k]];
-    try {
-      co.fit = fit_extended(fit, co.screen.start, candidate_spec(co.cand, sc), opt.misfit);
-      co.joint = std::isfinite(co.fit.J);
-    } catch (const std::exception &) {
-      co.joint = false;
+    // 3a. Screening at the baseline.
+    const DataScales sc = data_scales(fit);
+    std::vector<Candidate> cands;
+    for (const Candidate &c : candidate_vocabulary())
+      if (opt.only.empty() || std::find(opt.only.begin(), opt.only.end(), c.name) != opt.only.end())
+        cands.push_back(c);
+    std::vector<CandidateOutcome> out(cands.size());
+    std::vector<size_t> screen_jobs;
+    for (size_t i = 0; i < cands.size(); ++i) {
+      out[i].cand = cands[i];
+      screen_jobs.push_back(i);
     }
-  });
+    ExtFitSpec core;
+    const Columns rt = screen_columns(R.baseline, fit, opt.misfit, core);
+    parallel_for(screen_jobs.size(), opt.threads, [&](size_t k) {
+      const size_t i = screen_jobs[k];
+      out[i].screen = screen_candidate(cands[i], R.baseline, fit, opt.misfit, sc, rt);
+    });
+    // 3b. Joint fits of the most promising candidates.
+    std::vector<size_t> order;
+    for (size_t i = 0; i < out.size(); ++i)
+      if (out[i].screen.z >= opt.min_z) order.push_back(i);
+    std::sort(order.begin(), order.end(),
+              [&](size_t p, size_t q) { return out[p].screen.dJ > out[q].screen.dJ; });
+    if ((int)order.size() > opt.joint_fits) order.resize((size_t)opt.joint_fits);
+    parallel_for(order.size(), opt.threads, [&](size_t k) {
+      CandidateOutcome &co = out[order[k]];
+      try {
+        co.fit = fit_extended(fit, co.screen.start, candidate_spec(co.cand, sc), opt.misfit);
+        co.joint = std::isfinite(co.fit.J);
+      } catch (const std::exception &) {
+        co.joint = false;
+      }
+    });
 
-  // 4. Criteria and choice.
-  for (CandidateOutcome &co : out) {
-    if (!co.joint) {
-      co.error_holdout = NAN;
-      co.fit.error = NAN;
-      co.why = co.screen.z < opt.min_z ? "screened out: effect not significant"
-                                        : "screened out: smaller misfit reduction than others";
-      R.candidates.push_back(co);
-      continue;
-    }
-    const double k = (double)(co.cand.extra.size() + co.cand.delay + co.cand.offset);
-    const double ms = (double)co.fit.samples;
-    // On trimmed misfits, like the selection figure: isolated spikes (e.g. at
-    // ideal input corners) must not decide in either direction.
-    double Jc_trim = 0;
-    extended_error(co.fit.model, fit, opt.misfit, &Jc_trim, nullptr, opt.trim);
-    co.dbic = ms * std::log(Jb_trim / Jc_trim) - k * std::log(ms);
-    co.error_holdout = extended_error(co.fit.model, sel, sel_opt);
-    co.error_holdout_trimmed = extended_error(co.fit.model, sel, sel_opt, nullptr, nullptr, opt.trim);
-    co.gain = 1.0 - co.error_holdout_trimmed / R.baseline_error_holdout_trimmed;
-    co.amplitude_z = amplitude_z(co.cand, co.fit);
+    // 4. Criteria and choice.
+    for (CandidateOutcome &co : out) {
+      if (!co.joint) {
+        co.error_holdout = NAN;
+        co.fit.error = NAN;
+        co.why = co.screen.z < opt.min_z ? "screened out: effect not significant"
+                                          : "screened out: smaller misfit reduction than others";
+        R.candidates.push_back(co);
+        continue;
+      }
+      const double k = (double)(co.cand.extra.size() + co.cand.delay + co.cand.offset);
+      const double ms = (double)co.fit.samples;
+      // On trimmed misfits, like the selection figure: isolated spikes (e.g. at
+      // ideal input corners) must not decide in either direction.
+      double Jc_trim = 0;
+      extended_error(co.fit.model, fit, opt.misfit, &Jc_trim, nullptr, opt.trim);
+      co.dbic = ms * std::log(Jb_trim / Jc_trim) - k * std::log(ms);
+      co.error_holdout = extended_error(co.fit.model, sel, sel_opt);
+      co.error_holdout_trimmed = extended_error(co.fit.model, sel, sel_opt, nullptr, nullptr, opt.trim);
+      co.gain = 1.0 - co.error_holdout_trimmed / R.baseline_error_holdout_trimmed;
+      co.amplitude_z = amplitude_z(co.cand, co.fit);
+      // A Maxwell branch whose relaxation time is below the sample interval
+    // acts as a linear dashpot c = k tau: the data cannot tell it from
+    // `viscous`, so it may not claim a relaxation time.
+    const bool unresolved_tau = co.cand.name == "maxwell" && co.fit.model.p.maxwell_tau < 2.0 * sc.dt;
     if (co.amplitude_z < opt.min_z) co.why = "effect not significant (z < min_z)";
-    else if (co.dbic < opt.min_dbic) co.why = "fit gain explained by the extra parameters (delta BIC)";
-    else if (co.gain < opt.min_gain) co.why = R.has_holdout ? "held-out gain below min_gain" : "fit gain below min_gain";
-    else co.eligible = true;
-    R.candidates.push_back(co);
-  }
+    else if (unresolved_tau) co.why = "relaxation time below 2 sample intervals: a viscous dashpot";
+      else if (co.dbic < opt.min_dbic) co.why = "fit gain explained by the extra parameters (delta BIC)";
+      else if (co.gain < opt.min_gain) co.why = R.has_holdout ? "held-out gain below min_gain" : "fit gain below min_gain";
+      else co.eligible = true;
+      R.candidates.push_back(co);
+    }
+
+    // Basin check: the plain RT model is nested in every candidate. If a
+    // candidate fits much better while its own term is insignificant, its RT
+    // part found a better minimum than the baseline (seen on friction-damper
+    // data): refit the baseline from there and screen again, once.
+    const CandidateOutcome *better = nullptr;
+    for (const CandidateOutcome &co : R.candidates)
+      if (co.joint && co.amplitude_z < opt.min_z && co.fit.error < 0.9 * R.baseline_error_fit &&
+          (!better || co.fit.error < better->fit.error))
+        better = &co;
+    if (round > 0 || !better) break;
+    rtb_params restart = R.baseline_fit.params;
+    for (ParamId id : core_params()) param_ref(restart, id) = param_get(better->fit.model.p, id);
+    if (!opt.quiet)
+      std::fprintf(stderr, "diagnose: the %s fit found a better RT basin (%.3f%% < %.3f%%): refitting "
+                   "the baseline from it\n", better->cand.name.c_str(), 100 * better->fit.error,
+                   100 * R.baseline_error_fit);
+    IdentifyResult again = identify(fit, restart, io);
+    if (!(again.J < R.baseline_fit.J)) break;
+    R.baseline_fit = again;
+  }  // rounds
   for (size_t i = 0; i < R.candidates.size(); ++i)
     if (R.candidates[i].eligible &&
         (R.chosen < 0 || R.candidates[i].error_holdout_trimmed <

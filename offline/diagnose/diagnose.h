@@ -15,7 +15,11 @@
 //    held-out error drops by at least min_gain (relative). (b) and (c) use
 //    misfits with the largest `trim` fraction of squared residuals dropped,
 //    so isolated spikes decide nothing. The cause is the
-//    eligible candidate with the lowest held-out error, or "none".
+//    eligible candidate with the lowest held-out error, or "none". A Maxwell
+//    branch with tau below two sample intervals is a dashpot: not eligible.
+// Basin check: plain RT is nested in every candidate. If an insignificant
+// candidate fits below 0.9x the baseline, the baseline is refitted from its
+// RT part and steps 1-4 run once more (seen on friction-damper data).
 #ifndef RTB_OFFLINE_DIAGNOSE_H
 #define RTB_OFFLINE_DIAGNOSE_H
 

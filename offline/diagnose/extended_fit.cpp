@@ -82,7 +82,7 @@ double extended_error(const ExtModel &m, const std::vector<Record> &recs,
 
 ExtFitResult fit_extended(const std::vector<Record> &recs, const ExtModel &start,
                           const ExtFitSpec &spec, const MisfitOptions &opt) {
-  ParamTransform tf(spec.free, start.p);
+  ParamTransform tf(spec.free, start.p, stiffness_cap_for(recs));
   for (ParamId id : spec.free)
     if (param_get(start.p, id) == 0.0 && spec.scale[id] > 0.0) tf.scale[id] = spec.scale[id];
   const Eigen::Index P = (Eigen::Index)spec.free.size();

@@ -24,7 +24,7 @@ IdentifyResult identify(const std::vector<Record> &recs, const rtb_params &start
   IdentifyResult out;
   out.start = start;
   out.method = opt.method;
-  const ParamTransform tf(opt.free, start);
+  const ParamTransform tf(opt.free, start, stiffness_cap_for(recs));
   const MisfitValue m0 = misfit(start, recs, opt.misfit, false);
   const double J0 = m0.J0;
   out.error_start = m0.error();
@@ -195,19 +195,46 @@ bool sandwich_covariance(const Eigen::VectorXd &r, const Eigen::MatrixXd &Jw,
   // Scale columns to unit size so the inversion is well conditioned.
   const Eigen::VectorXd cs = Jw.colwise().norm().transpose().cwiseMax(1e-300);
   const Eigen::MatrixXd Js = Jw * cs.cwiseInverse().asDiagonal();
-  const Eigen::MatrixXd A = Js.transpose() * Js;
   Eigen::VectorXd d(m);
   for (Eigen::Index j = 0; j < m; ++j) d[j] = s2[group[j]] * w[j];
-  const Eigen::MatrixXd B = Js.transpose() * d.asDiagonal() * Js;
-  Eigen::JacobiSVD<Eigen::MatrixXd> svd(A, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  const Eigen::VectorXd sv = svd.singularValues();
-  if (!(sv[n - 1] > 1e-14 * sv[0])) return false;
-  const Eigen::MatrixXd Ai = svd.solve(Eigen::MatrixXd::Identity(n, n));
-  Eigen::MatrixXd C = Ai * B * Ai;
-  C = cs.cwiseInverse().asDiagonal() * C * cs.cwiseInverse().asDiagonal();
+  // Parameters the data cannot determine at all (a stiffness driven to ~0 or
+  // to its ceiling, a column identical to another) make A singular. Drop
+  // them one at a time, by the null direction's largest component, and give
+  // them an infinite standard deviation; the others are then conditional on
+  // them (the only meaningful figure left).
+  std::vector<Eigen::Index> keep(n);
+  for (Eigen::Index i = 0; i < n; ++i) keep[i] = i;
+  Eigen::MatrixXd Ck;
+  while (!keep.empty()) {
+    const Eigen::Index k = (Eigen::Index)keep.size();
+    Eigen::MatrixXd Jk(m, k);
+    for (Eigen::Index i = 0; i < k; ++i) Jk.col(i) = Js.col(keep[i]);
+    const Eigen::MatrixXd A = Jk.transpose() * Jk;
+    const Eigen::MatrixXd B = Jk.transpose() * d.asDiagonal() * Jk;
+    Eigen::JacobiSVD<Eigen::MatrixXd> svd(A, Eigen::ComputeFullU | Eigen::ComputeFullV);
+    const Eigen::VectorXd sv = svd.singularValues();
+    if (sv[k - 1] > 1e-14 * sv[0]) {
+      const Eigen::MatrixXd Ai = svd.solve(Eigen::MatrixXd::Identity(k, k));
+      Ck = Ai * B * Ai;
+      break;
+    }
+    Eigen::Index worst = 0;
+    svd.matrixV().col(k - 1).cwiseAbs().maxCoeff(&worst);
+    keep.erase(keep.begin() + worst);
+  }
+  if (keep.empty()) return false;
+  Eigen::MatrixXd C = Eigen::MatrixXd::Zero(n, n);
+  for (Eigen::Index i = 0; i < n; ++i) C(i, i) = INFINITY;
+  for (size_t a = 0; a < keep.size(); ++a)
+    for (size_t b = 0; b < keep.size(); ++b)
+      C(keep[a], keep[b]) = Ck((Eigen::Index)a, (Eigen::Index)b) / (cs[keep[a]] * cs[keep[b]]);
   stddev = C.diagonal().cwiseSqrt();
-  if (correlation)
-    *correlation = stddev.cwiseInverse().asDiagonal() * C * stddev.cwiseInverse().asDiagonal();
+  if (correlation) {
+    *correlation = Eigen::MatrixXd::Identity(n, n);
+    for (size_t a = 0; a < keep.size(); ++a)
+      for (size_t b = 0; b < keep.size(); ++b)
+        (*correlation)(keep[a], keep[b]) = C(keep[a], keep[b]) / (stddev[keep[a]] * stddev[keep[b]]);
+  }
   return true;
 }
 

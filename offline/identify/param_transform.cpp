@@ -6,8 +6,12 @@
 namespace rtb {
 
 namespace {
-enum class Kind { Log, Alpha, Unit, Linear };
-Kind kind_of(ParamId id) {
+enum class Kind { Log, CappedLog, Alpha, Unit, Linear };
+bool is_stiffness(ParamId id) {
+  return id == P_K0 || id == P_Kpa || id == P_Kr || id == P_maxwell_k;
+}
+Kind kind_of(ParamId id, double cap) {
+  if (cap > 0.0 && is_stiffness(id)) return Kind::CappedLog;
   switch (id) {
     case P_alpha: return Kind::Alpha;
     case P_mullins: return Kind::Unit;
@@ -22,8 +26,18 @@ double logistic(double t) { return 1.0 / (1.0 + std::exp(-t)); }
 
 std::vector<ParamId> core_params() { return {P_K0, P_Kpa, P_Kr, P_C0, P_alpha}; }
 
-ParamTransform::ParamTransform(std::vector<ParamId> free_ids, const rtb_params &start)
-    : free(std::move(free_ids)) {
+double stiffness_cap_for(const std::vector<Record> &recs) {
+  double F = 0.0, X = 0.0;
+  for (const Record &r : recs) {
+    for (double v : r.F) F = std::fmax(F, std::fabs(v));
+    for (double v : r.x) X = std::fmax(X, std::fabs(v));
+  }
+  return (F > 0.0 && X > 0.0) ? kStiffnessCapFactor * F / X : 0.0;
+}
+
+ParamTransform::ParamTransform(std::vector<ParamId> free_ids, const rtb_params &start,
+                               double cap)
+    : free(std::move(free_ids)), stiffness_cap(std::isfinite(cap) && cap > 0.0 ? cap : 0.0) {
   for (ParamId id : free) {
     const double v = std::fabs(param_get(start, id));
     scale[id] = v > 0.0 ? v : 1.0;
@@ -35,8 +49,13 @@ Eigen::VectorXd ParamTransform::to_theta(const rtb_params &p) const {
   for (size_t i = 0; i < free.size(); ++i) {
     const ParamId id = free[i];
     const double v = param_get(p, id);
-    switch (kind_of(id)) {
+    switch (kind_of(id, stiffness_cap)) {
       case Kind::Log: th[i] = std::log(std::fmax(v, 1e-300)); break;
+      case Kind::CappedLog: {  // inverse of p = c e^t / (c + e^t)
+        const double u = std::fmin(std::fmax(v, 1e-300) / stiffness_cap, 1.0 - 1e-9);
+        th[i] = std::log(std::fmax(v, 1e-300)) - std::log1p(-u);
+        break;
+      }
       case Kind::Alpha: {
         const double u = std::fmin(std::fmax((v - kAlphaLo) / (kAlphaHi - kAlphaLo), 1e-9), 1 - 1e-9);
         th[i] = std::log(u / (1.0 - u));
@@ -58,8 +77,11 @@ rtb_params ParamTransform::to_params(const Eigen::VectorXd &th, const rtb_params
   for (size_t i = 0; i < free.size(); ++i) {
     const ParamId id = free[i];
     double &v = param_ref(p, id);
-    switch (kind_of(id)) {
+    switch (kind_of(id, stiffness_cap)) {
       case Kind::Log: v = std::exp(th[i]); break;
+      case Kind::CappedLog:
+        v = stiffness_cap / (1.0 + std::exp(std::log(stiffness_cap) - th[i]));
+        break;
       case Kind::Alpha: v = kAlphaLo + (kAlphaHi - kAlphaLo) * logistic(th[i]); break;
       case Kind::Unit: v = logistic(th[i]); break;
       case Kind::Linear: v = th[i] * scale[id]; break;
@@ -75,8 +97,13 @@ Eigen::VectorXd ParamTransform::dp_dtheta(const Eigen::VectorXd &th) const {
   Eigen::VectorXd d(free.size());
   for (size_t i = 0; i < free.size(); ++i) {
     const ParamId id = free[i];
-    switch (kind_of(id)) {
+    switch (kind_of(id, stiffness_cap)) {
       case Kind::Log: d[i] = std::exp(th[i]); break;
+      case Kind::CappedLog: {
+        const double p = stiffness_cap / (1.0 + std::exp(std::log(stiffness_cap) - th[i]));
+        d[i] = p * (1.0 - p / stiffness_cap);
+        break;
+      }
       case Kind::Alpha: {
         const double s = logistic(th[i]);
         d[i] = (kAlphaHi - kAlphaLo) * s * (1.0 - s);

@@ -5,6 +5,14 @@
 // alpha as a logistic image of (RTB_ALPHA_MIN, 1); mullins of (0, 1); signed
 // parameters (k3, k_asym) scaled by a reference value. Log coordinates also
 // make the problem scale-free: a unit step is a relative change.
+//
+// Stiffness ceiling: with a finite `stiffness_cap` the stiffnesses (K0, Kpa,
+// Kr, maxwell_k) map as p = cap e^t / (cap + e^t): log-like far below the cap,
+// saturating at it. Without it an unidentifiable series spring runs off to
+// 1e12 x the data's stiffness (seen on friction-damper data, where the
+// optimum is a rigid Kpa), and F = Kpa (x - y1) then amplifies the round-off
+// of y1 into forces of 1e9. At 1e3 x the secant stiffness the spring is rigid
+// to 0.1% while the force round-off stays ~1e-13 relative.
 #ifndef RTB_OFFLINE_PARAM_TRANSFORM_H
 #define RTB_OFFLINE_PARAM_TRANSFORM_H
 
@@ -20,12 +28,19 @@ struct ParamTransform {
   std::vector<ParamId> free;
   std::array<double, P_COUNT> scale{};  // reference magnitude of signed params
 
-  ParamTransform(std::vector<ParamId> free_ids, const rtb_params &start);
+  double stiffness_cap = 0.0;           // 0: no ceiling (pure log)
+
+  ParamTransform(std::vector<ParamId> free_ids, const rtb_params &start,
+                 double stiffness_cap = 0.0);
   Eigen::VectorXd to_theta(const rtb_params &p) const;
   rtb_params to_params(const Eigen::VectorXd &theta, const rtb_params &base) const;
   // dp_i / dtheta_i at theta (diagonal of the Jacobian).
   Eigen::VectorXd dp_dtheta(const Eigen::VectorXd &theta) const;
 };
+
+// The stiffness ceiling for records: kStiffnessCapFactor x max|F| / max|x|.
+constexpr double kStiffnessCapFactor = 1e3;
+double stiffness_cap_for(const std::vector<Record> &recs);
 
 // The default free set: the five RT parameters.
 std::vector<ParamId> core_params();

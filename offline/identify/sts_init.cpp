@@ -157,8 +157,32 @@ rtb_params sts_initial_guess(const std::vector<Record> &recs, int cells, double 
       why = e.what();
     }
   }
-  if (!have) throw InputError("STS initial values: " + why);
-  const StsParams s = invert_sts(best, cells);
+  StsParams s;
+  if (!have) {
+    // Single ramps, load-unload records, relaxation tests: no loop to invert.
+    // A generic start from the secant stiffness instead (the NaN STS values
+    // take rt_start_from_sts's fallbacks: K0 = Ksec/2, Kpa = Tg1 - K0, ...).
+    double sv = 0.0, n = 0.0;
+    for (const Record &r : recs)
+      for (size_t i = 0; i < r.t.size(); ++i) {
+        best.Fmax = std::fmax(best.Fmax, std::fabs(r.F[i]));
+        best.Xmax = std::fmax(best.Xmax, std::fabs(r.x[i]));
+        if (i > 0) {
+          sv += std::fabs(r.x[i] - r.x[i - 1]);
+          n += r.t[i] - r.t[i - 1];
+        }
+      }
+    if (!(best.Fmax > 0.0 && best.Xmax > 0.0 && sv > 0.0))
+      throw InputError("initial values: the records neither move nor load (" + why + ")");
+    best.Ksec = best.Fmax / best.Xmax;
+    best.Tg1 = 3.0 * best.Ksec;
+    best.Tg2 = 0.5 * best.Ksec;
+    best.V0 = sv / n;
+    s.K0 = s.Kpa = s.Kr = s.Ff = NAN;
+    if (note) *note += "no complete cycle in any record (" + why + "): generic start from the secant stiffness; ";
+  } else {
+    s = invert_sts(best, cells);
+  }
   if (feat) *feat = best;
   if (sts) *sts = s;
   return rt_start_from_sts(s, best, cells, alpha0, note);

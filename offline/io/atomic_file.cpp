@@ -32,17 +32,6 @@ bool inject(int stage) {
   return false;
 }
 
-std::string dir_of(const std::string &path) {
-  const size_t slash = path.find_last_of('/');
-  if (slash == std::string::npos) return ".";
-  if (slash == 0) return "/";
-  return path.substr(0, slash);
-}
-
-std::string base_of(const std::string &path) {
-  const size_t slash = path.find_last_of('/');
-  return slash == std::string::npos ? path : path.substr(slash + 1);
-}
 
 // The process umask without changing it (umask(2) can only be read by
 // setting it, which races with other threads); 022 if unknown.
@@ -59,6 +48,18 @@ mode_t current_umask() {
 }
 
 }  // namespace
+
+std::string dir_of(const std::string &path) {
+  const size_t slash = path.find_last_of('/');
+  if (slash == std::string::npos) return ".";
+  if (slash == 0) return "/";
+  return path.substr(0, slash);
+}
+
+std::string base_of(const std::string &path) {
+  const size_t slash = path.find_last_of('/');
+  return slash == std::string::npos ? path : path.substr(slash + 1);
+}
 
 void set_atomic_write_fault_for_testing(int stage) { g_fault_stage = stage; }
 

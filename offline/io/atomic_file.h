@@ -6,6 +6,10 @@
 
 namespace rtb {
 
+// The directory part of a path ("." for a bare name) and the file name.
+std::string dir_of(const std::string &path);
+std::string base_of(const std::string &path);
+
 // Reads a whole file into memory. Throws InputError("PATH: cannot open: ...").
 std::string read_file_bytes(const std::string &path);
 

@@ -100,6 +100,9 @@ const Field kRealFields[] = {
     {"mass", &rtb_params::mass, "inertia"},
     {"backlash", &rtb_params::backlash, "clearance"},
     {"mullins", &rtb_params::mullins, "Mullins softening fraction"},
+    {"smoothing", &rtb_params::smoothing, "eq. (14) smoothing s, 0 = off"},
+    {"sat_force", &rtb_params::sat_force, "softening spring force"},
+    {"sat_disp", &rtb_params::sat_disp, "softening spring displacement"},
 };
 
 // A compile-time check of the struct layout this file assumes: every field
@@ -126,8 +129,14 @@ static_assert(offsetof(rtb_params, Kpa) == offsetof(rtb_params, K0) + sizeof(rtb
                   offsetof(rtb_params, backlash) == offsetof(rtb_params, mass) + sizeof(rtb_real) &&
                   offsetof(rtb_params, mullins) ==
                       offsetof(rtb_params, backlash) + sizeof(rtb_real) &&
-                  offsetof(rtb_params, reserved) ==
+                  offsetof(rtb_params, smoothing) ==
                       offsetof(rtb_params, mullins) + sizeof(rtb_real) &&
+                  offsetof(rtb_params, sat_force) ==
+                      offsetof(rtb_params, smoothing) + sizeof(rtb_real) &&
+                  offsetof(rtb_params, sat_disp) ==
+                      offsetof(rtb_params, sat_force) + sizeof(rtb_real) &&
+                  offsetof(rtb_params, reserved) ==
+                      offsetof(rtb_params, sat_disp) + sizeof(rtb_real) &&
                   sizeof(rtb_params) ==
                       offsetof(rtb_params, reserved) + RTB_N_RESERVED * sizeof(rtb_real),
               "rtb_params changed: update kRealFields and the emitter");
@@ -185,7 +194,9 @@ std::string emit_parameter_header(const rtb_params &p, const HeaderInfo &info) {
   line(" *");
   line(std::string(" * Model: ") + (rt ? "rt (rate-dependent triboelastic, eq. (2))" : "sts (friction, section 3.1)") +
        ", cells N = " + std::to_string(p.cells) +
-       (rt ? std::string(", integrator ") + integrator_name(p.integrator) : std::string()));
+       (rt ? std::string(", integrator ") + integrator_name(p.integrator) : std::string()) +
+       (rt && p.smoothing > 0.0 ? ", eq. (14) smoothing s = " + short_dec(p.smoothing)
+                                : std::string()));
   if (!info.data_files.empty()) {
     line(" *");
     line(" * Data (SHA-256 of the file bytes):");

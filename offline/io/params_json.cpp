@@ -1,7 +1,10 @@
 // params_json.cpp -- parameter files (format in rtb_offline.h).
 //
-// {"model":"rt"|"sts", "cells":15, "integrator":"sdirk2"|"be",
+// {"model":"rt"|"sts", "cells":15, "integrator":"sdirk2"|"be", "smoothing":s,
 //  "params":{"K0":..,"Kpa":..,"Kr":..,"C0":..,"alpha":.., extensions..., "Ff":..}}
+// "smoothing" (eq. (14), >= 0, [1/velocity]) is a model setting like the
+// integrator, not an identified parameter: optional, absent = 0 = off, and
+// written only when nonzero (so unsmoothed files are unchanged).
 // Errors are InputError("FILE: ..."), naming the offending key; the last check
 // is rtb_params_validate itself, so a file accepted here is accepted by the
 // real-time library.
@@ -38,6 +41,8 @@ const Key kKeys[] = {
     {"mass", &rtb_params::mass, Key::nonneg},
     {"backlash", &rtb_params::backlash, Key::nonneg},
     {"mullins", &rtb_params::mullins, Key::fraction},
+    {"sat_force", &rtb_params::sat_force, Key::nonneg},
+    {"sat_disp", &rtb_params::sat_disp, Key::nonneg},
 };
 
 bool required(const Key &k, int model) {
@@ -112,6 +117,17 @@ rtb_params params_from_json(const nlohmann::json &doc, const std::string &origin
       p.integrator = RTB_INTEGRATOR_BE;
     else
       fail("\"integrator\": unknown integrator \"" + s + "\" (expected \"sdirk2\" or \"be\")");
+  }
+
+  // smoothing, eq. (14)
+  p.smoothing = 0.0;
+  if (doc.contains("smoothing")) {
+    const nlohmann::json &js = doc["smoothing"];
+    if (!js.is_number()) fail("\"smoothing\" must be a number (>= 0, 0 = off), found " + js.dump());
+    const double v = js.get<double>();
+    if (!std::isfinite(v)) fail("\"smoothing\" is not finite");
+    if (v < 0.0) fail("\"smoothing\" = " + num(v) + " is negative (must be >= 0, 0 = off)");
+    p.smoothing = v;
   }
 
   // params
@@ -201,6 +217,7 @@ nlohmann::ordered_json params_to_json(const rtb_params &p) {
   j["model"] = model_name(p.model);
   j["cells"] = p.cells;
   j["integrator"] = integrator_name(p.integrator);
+  if (p.smoothing != 0.0) j["smoothing"] = p.smoothing;
   nlohmann::ordered_json jp = nlohmann::ordered_json::object();
   for (const Key &k : kKeys) {
     const double v = p.*(k.field);

@@ -15,7 +15,7 @@ namespace rtb {
 nlohmann::ordered_json params_to_json(const rtb_params &p);
 
 // Parses an already-parsed document (top-level keys other than model, cells,
-// integrator and params are ignored). `origin` names the source in messages.
+// integrator, smoothing (eq. (14), optional, 0 = off) and params are ignored). `origin` names the source in messages.
 rtb_params params_from_json(const nlohmann::json &doc, const std::string &origin);
 
 // "rt"/"sts", "sdirk2"/"be".

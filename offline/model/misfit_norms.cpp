@@ -34,18 +34,22 @@ std::vector<double> trapezoid_weights(const std::vector<double> &t) {
 }
 
 MisfitNorms misfit_norms(const std::vector<double> &t, const std::vector<double> &F_model,
-                         const std::vector<double> &F_exp) {
+                         const std::vector<double> &F_exp,
+                         const std::vector<unsigned char> &masked) {
   const size_t n = t.size();
   if (F_model.size() != n || F_exp.size() != n)
     throw std::invalid_argument("misfit_norms: time, model and measured force differ in length");
   if (n < 2) throw std::invalid_argument("misfit_norms: need at least 2 samples");
+  if (!masked.empty() && masked.size() != n)
+    throw std::invalid_argument("misfit_norms: mask and time differ in length");
   for (size_t i = 1; i < n; ++i)
     if (!(t[i] - t[i - 1] > 0.0)) throw std::invalid_argument("misfit_norms: time does not increase");
   const std::vector<double> w = trapezoid_weights(t);
   MisfitNorms m;
-  m.samples = n;
-  double sum_e2 = 0.0, lo = F_exp[0], hi = F_exp[0];
+  double sum_e2 = 0.0, lo = INFINITY, hi = -INFINITY;
   for (size_t i = 0; i < n; ++i) {
+    if (!masked.empty() && masked[i]) continue;
+    ++m.samples;
     const double e = F_model[i] - F_exp[i], f = F_exp[i];
     m.J += 0.5 * w[i] * e * e;    // eq. (11) without the Tikhonov term
     m.J0 += 0.5 * w[i] * f * f;   // eq. (27)
@@ -53,8 +57,8 @@ MisfitNorms misfit_norms(const std::vector<double> &t, const std::vector<double>
     lo = std::min(lo, f);
     hi = std::max(hi, f);
   }
-  m.rms = std::sqrt(sum_e2 / (double)n);
-  m.range = hi - lo;
+  m.rms = m.samples ? std::sqrt(sum_e2 / (double)m.samples) : 0.0;
+  m.range = m.samples ? hi - lo : 0.0;
   return m;
 }
 

@@ -30,9 +30,11 @@ struct MisfitNorms {
 std::vector<double> trapezoid_weights(const std::vector<double> &t);
 
 // All three vectors have the same length (>= 2) and t strictly increases.
-// Throws std::invalid_argument otherwise.
+// Throws std::invalid_argument otherwise. Samples with masked[i] != 0 (mask
+// empty: none) are left out of every figure (weight 0 in the integrals).
 MisfitNorms misfit_norms(const std::vector<double> &t, const std::vector<double> &F_model,
-                         const std::vector<double> &F_exp);
+                         const std::vector<double> &F_exp,
+                         const std::vector<unsigned char> &masked = {});
 
 // sqrt(sum w_i J_i / sum w_i J0_i); weights empty = all 1.
 double combined_relative_error(const std::vector<MisfitNorms> &parts,

@@ -6,7 +6,7 @@ namespace rtb {
 const char *param_name(ParamId id) {
   static const char *const names[P_COUNT] = {
       "K0", "Kpa", "Kr", "C0", "alpha", "k3", "k_asym", "maxwell_k", "maxwell_tau",
-      "viscous_c", "mass", "backlash", "mullins"};
+      "viscous_c", "mass", "backlash", "mullins", "sat_force", "sat_disp"};
   return (id >= 0 && id < P_COUNT) ? names[id] : "?";
 }
 
@@ -25,6 +25,8 @@ double &param_ref(rtb_params &p, ParamId id) {
     case P_mass: return p.mass;
     case P_backlash: return p.backlash;
     case P_mullins: return p.mullins;
+    case P_sat_force: return p.sat_force;
+    case P_sat_disp: return p.sat_disp;
     case P_COUNT: break;
   }
   throw std::logic_error("param_ref: bad id");

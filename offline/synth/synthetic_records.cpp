@@ -110,6 +110,7 @@ Scenario hidden_effect_scenario(const std::string &effect, unsigned seed, double
   else if (effect == "delay") sc.truth.delay = 0.004;
   else if (effect == "inertia") p.mass = 0.15 * Fel / (A * std::pow(2 * 3.14159 * 3.0, 2));
   else if (effect == "offset") sc.truth.offset = 0.05 * Fel;
+  else if (effect == "softening") { p.sat_force = 0.3 * Fel; p.sat_disp = logu(0.1, 0.3) * A; }
   else if (effect != "none") throw std::invalid_argument("unknown effect " + effect);
   sc.truth.noise = noise;
   const double T = duration;

@@ -1,4 +1,5 @@
-/* dashpot_law.h -- the RT cell's nonlinear dashpot, eq. (1), and its inverse.
+/* dashpot_law.h -- the RT cell's nonlinear dashpot, eq. (1), and its inverse;
+ * optionally smoothed as in eq. (14).
  *
  * eq. (1):   f = psi(v) = C0 sign(v) |v|^alpha
  * inverse:   v = phi(f) = sign(f) (|f|/C0)^(1/alpha)
@@ -11,6 +12,7 @@
 #ifndef RTB_DASHPOT_LAW_H
 #define RTB_DASHPOT_LAW_H
 
+#include <float.h>
 #include <math.h>
 
 /* psi(v), eq. (1). */
@@ -47,6 +49,155 @@ static inline double rtb_law_dv_dalpha(double f, double v, double C0, double alp
 /* Dissipation potential of phi: Phi*(f) = int_0^f phi = alpha/(1+alpha) f v. */
 static inline double rtb_law_dual_potential(double f, double v, double alpha) {
   return alpha / (1.0 + alpha) * f * v;
+}
+
+/* ------------------------------------------------------------------------
+ * Optional smoothing, eq. (14) (rtb_params.smoothing = s > 0, [1/velocity]):
+ *   sign_s(v) = 2/(1 + exp(-s v)) - 1,   |v|_s = (2/s) ln(1 + exp(s v)) - v,
+ *   f = psi_s(v) = C0 sign_s(v) |v|_s^alpha.
+ * Written without overflow: with e = exp(-s|v|) in [0, 1],
+ *   sign_s(v) = sign(v) tanh(s|v|/2) = sign(v) (1 - e)/(1 + e),
+ *   |v|_s = |v| + (2/s) log1p(e)   (no exp(s v) is ever formed).
+ * psi_s is odd, C-infinity and strictly increasing, with the finite slope
+ * C0 (s/2)^(1-alpha) (ln 2)^alpha at v = 0; d|v|_s/dv = sign_s(v). As s -> inf
+ * psi_s -> psi uniformly (error O(C0 s^-alpha), near |v| ~ 1/s) and
+ * exponentially fast at any fixed v != 0.
+ */
+
+/* Beyond s|v| = RTB_SLAW_SHARP, tanh(s|v|/2) rounds to 1 and |v|_s/|v| - 1 <
+ * 2 exp(-s|v|)/(s|v|) ~ 1e-19: psi_s equals psi to rounding, so eq. (1) is
+ * evaluated directly (cheaper; the slope keeps its exact sign_s' term). */
+#define RTB_SLAW_SHARP 40.0
+
+/* ln |v|_s, eq. (14), by the same operations as rtb_slaw_force. With
+ * e = exp(-s|v|) in (exp(-40), 1] there: |v|_s = |v| + (2/s) log1p(e), and
+ * only for s < ~1e-307 (2/s overflows) ln(s|v| + 2 log1p(e)) - ln s. */
+static inline double rtb_slaw_log_abs(double v, double s) {
+  const double a = fabs(v), sa = s * a;
+  if (sa >= RTB_SLAW_SHARP) return log(a);
+  const double L = log1p(1.0 + expm1(-sa));
+  const double A = a + 2.0 * L / s;
+  return A <= DBL_MAX ? log(A) : log(sa + 2.0 * L) - log(s);
+}
+
+/* psi_s(v) and (if dfdv) psi_s'(v) = C0 |v|_s^alpha (sign_s' + alpha
+ * sign_s^2 / |v|_s), sign_s' = 2 s e / (1 + e)^2. Both terms are >= 0, so
+ * the slope is never negative; it is > 0 wherever psi_s is finite. */
+static inline double rtb_slaw_force(double v, double C0, double alpha, double s,
+                                    double *dfdv) {
+  const double a = fabs(v), sa = s * a;
+  if (sa >= RTB_SLAW_SHARP) {
+    const double m = rtb_law_force(a, C0, alpha), e = exp(-sa);
+    if (dfdv) { /* = C0 |v|^alpha (sign_s' + alpha/|v|); e == 0 or |v| = inf: no 0 * inf */
+      const double t = e > 0.0 ? 2.0 * sa * e / ((1.0 + e) * (1.0 + e)) : 0.0;
+      *dfdv = a <= DBL_MAX ? m / a * (t + alpha) : 0.0;
+    }
+    return v < 0.0 ? -m : m;
+  }
+  const double em = expm1(-sa), e = 1.0 + em; /* e in (exp(-40), 1]: no underflow */
+  const double S = -em / (2.0 + em);          /* |sign_s(v)| = tanh(s|v|/2) */
+  const double L = log1p(e);
+  const double A = a + 2.0 * L / s;           /* |v|_s; inf only for s < ~1e-307 */
+  const double lnA = A <= DBL_MAX ? log(A) : log(sa + 2.0 * L) - log(s);
+  const double P = exp(alpha * lnA);          /* |v|_s^alpha */
+  if (dfdv) {
+    const double dS = 2.0 * s * e / ((1.0 + e) * (1.0 + e));
+    const double PA = A <= DBL_MAX ? P / A : exp((alpha - 1.0) * lnA); /* |v|_s^(alpha-1) */
+    *dfdv = C0 * (dS * P + alpha * S * S * PA);
+  }
+  const double m = C0 * S * P;
+  return v < 0.0 ? -m : m;
+}
+
+/* v = phi_s(f), the inverse of psi_s, by a safeguarded scalar Newton
+ * iteration with bisection fallback on a bracket that is proven a priori:
+ *   psi_s(v) <= C0 (|v| + 2 ln2/s)^alpha    -> lo = max(0, vu - 2 ln2/s),
+ *   psi_s(v) >= C0 tanh(s|v|/2) |v|^alpha   -> hi = 4 (vu + 2/s),
+ * with vu = phi(|f|) the unsmoothed inverse (at hi, tanh >= tanh(4) and
+ * 4^alpha tanh(4) >= 1 for alpha >= RTB_ALPHA_MIN). Start: `guess` (the
+ * stage solver's tangent prediction, accurate to second order near its
+ * solution) when it has f's sign and lies in the bracket, else vu, which is
+ * the inverse to rounding when s vu >= RTB_SLAW_SHARP.
+ * Why invert at all, instead of making v the only unknown of smoothed cells:
+ * for large s, psi_s is as steep near v = 0 as eq. (1), and a Newton in v
+ * there needs many damped steps; keeping the stage solver's per-DOF variable
+ * switch (stage_newton.cpp) keeps both regimes fast, and the inverse is only
+ * needed on the force-updated (shallow-dashpot) DOFs, where it takes 1.5
+ * psi_s evaluations on average. Bounded: at most RTB_SLAW_INV_ITERS
+ * evaluations. Returns +-inf (a rejected trial point) only if vu overflows. */
+#define RTB_SLAW_INV_ITERS 80
+static inline double rtb_slaw_velocity(double f, double C0, double alpha, double s,
+                                       double guess) {
+  if (f == 0.0) return 0.0;
+  const double m = fabs(f);
+  const double vu = rtb_law_velocity(m, C0, alpha);
+  if (!(vu <= DBL_MAX)) return f > 0.0 ? INFINITY : -INFINITY;
+  if (s * vu >= RTB_SLAW_SHARP) return f > 0.0 ? vu : -vu; /* psi_s(vu) == f to rounding */
+  double lo = vu - 2.0 * 0.69314718055994530942 / s;
+  if (!(lo > 0.0)) lo = 0.0;
+  double hi = 4.0 * (vu + 2.0 / s);
+  if (!(hi <= DBL_MAX)) hi = DBL_MAX;
+  const double g = f > 0.0 ? guess : -guess;
+  double v = (g > lo && g < hi) ? g : (vu < lo ? lo : (vu > hi ? hi : vu));
+  for (int it = 0; it < RTB_SLAW_INV_ITERS; ++it) {
+    double d;
+    const double r = rtb_slaw_force(v, C0, alpha, s, &d) - m;
+    if (r == 0.0) break;
+    if (r > 0.0) hi = v; else lo = v;
+    double vn = v - r / d;
+    /* Converged: the step or the force residual is at rounding level (the
+     * inverse amplifies rounding by up to 1/alpha, so a step test alone
+     * could idle until the bracket collapses). */
+    if (fabs(vn - v) <= 2.0 * DBL_EPSILON * v || fabs(r) <= 4.0 * DBL_EPSILON * m) {
+      if (vn >= lo && vn <= hi) v = vn;
+      break;
+    }
+    /* Outside the bracket (or NaN): bisect, geometrically when the bracket
+     * spans orders of magnitude (the root may lie far below hi). */
+    if (!(vn > lo && vn < hi))
+      vn = (lo > 0.0 && hi > 4.0 * lo) ? sqrt(lo) * sqrt(hi) : lo + 0.5 * (hi - lo);
+    v = vn;
+    if (hi - lo <= 2.0 * DBL_EPSILON * hi) break;
+  }
+  return f > 0.0 ? v : -v;
+}
+
+/* ------------------------------------------------------------------------
+ * The law the stepper uses: eq. (1) when s == 0 (these calls are exactly the
+ * unsmoothed functions above, so results are bit-identical to a build
+ * without smoothing), eq. (14) when s > 0. Derivatives are those of v at
+ * fixed f, as the stage equations need them (rtb_internal.h).
+ */
+static inline double rtb_dashpot_force(double v, double C0, double alpha, double s) {
+  return s > 0.0 ? rtb_slaw_force(v, C0, alpha, s, 0) : rtb_law_force(v, C0, alpha);
+}
+
+/* `guess` only warm-starts the smoothed inverse (any value is safe). */
+static inline double rtb_dashpot_velocity(double f, double C0, double alpha, double s,
+                                          double guess) {
+  return s > 0.0 ? rtb_slaw_velocity(f, C0, alpha, s, guess) : rtb_law_velocity(f, C0, alpha);
+}
+
+/* dv/df = 1/psi_s'(v) (finite and > 0 for s > 0; capped at DBL_MAX). */
+static inline double rtb_dashpot_dvdf(double f, double v, double C0, double alpha, double s) {
+  if (!(s > 0.0)) return rtb_law_dvdf(f, v, alpha);
+  double d;
+  rtb_slaw_force(v, C0, alpha, s, &d);
+  const double D = 1.0 / d;
+  return D <= DBL_MAX ? D : DBL_MAX;
+}
+
+/* dv/dC0 at fixed f: psi_s is linear in C0, so dv/dC0 = -(f/C0) dv/df. */
+static inline double rtb_dashpot_dv_dC0(double f, double v, double C0, double alpha, double s) {
+  if (!(s > 0.0)) return rtb_law_dv_dC0(v, C0, alpha);
+  return -(f / C0) * rtb_dashpot_dvdf(f, v, C0, alpha, s);
+}
+
+/* dv/dalpha at fixed f: d psi_s/d alpha = f ln|v|_s, so dv/dalpha =
+ * -f ln|v|_s dv/df. */
+static inline double rtb_dashpot_dv_dalpha(double f, double v, double C0, double alpha, double s) {
+  if (!(s > 0.0)) return rtb_law_dv_dalpha(f, v, C0, alpha);
+  return -f * rtb_slaw_log_abs(v, s) * rtb_dashpot_dvdf(f, v, C0, alpha, s);
 }
 
 #endif

@@ -29,7 +29,7 @@ extern "C" rtb_status rtb_params_default(rtb_params *p, int model) {
 static int finite_all(const rtb_params *p) {
   const double v[] = {p->K0, p->Kpa, p->Kr, p->C0, p->alpha, p->Ff, p->k3, p->k_asym,
                       p->maxwell_k, p->maxwell_tau, p->viscous_c, p->mass, p->backlash,
-                      p->mullins};
+                      p->mullins, p->smoothing, p->sat_force, p->sat_disp};
   for (size_t i = 0; i < sizeof v / sizeof v[0]; ++i)
     if (!isfinite(v[i])) return 0;
   return 1;
@@ -57,6 +57,9 @@ extern "C" rtb_status rtb_params_validate(const rtb_params *p) {
   if (p->maxwell_k > 0.0 && !(p->maxwell_tau > 0.0)) return RTB_ERR_PARAM_RANGE;
   if (p->viscous_c < 0.0 || p->mass < 0.0 || p->backlash < 0.0) return RTB_ERR_PARAM_RANGE;
   if (!(p->mullins >= 0.0 && p->mullins < 1.0)) return RTB_ERR_PARAM_RANGE;
+  if (p->smoothing < 0.0) return RTB_ERR_PARAM_RANGE; /* eq. (14): s >= 0, 0 = off */
+  if (p->sat_force < 0.0 || p->sat_disp < 0.0) return RTB_ERR_PARAM_RANGE;
+  if (p->sat_force > 0.0 && !(p->sat_disp > 0.0)) return RTB_ERR_PARAM_RANGE;
   return RTB_OK;
 }
 
@@ -111,7 +114,8 @@ extern "C" rtb_real rtb_static_force(const rtb_params *p, rtb_real x) {
   if (!p) return 0.0;
   /* All dashpots relaxed: Kpa and N springs Kr in series, parallel to K0. */
   const double chain = 1.0 / (1.0 / p->Kpa + p->cells / p->Kr);
-  return p->K0 * x + chain * x + p->k3 * x * x * x + p->k_asym * fabs(x);
+  const double sat = p->sat_disp > 0.0 ? p->sat_force * tanh(x / p->sat_disp) : 0.0;
+  return p->K0 * x + chain * x + p->k3 * x * x * x + p->k_asym * fabs(x) + sat;
 }
 
 extern "C" int rtb_cell_states(const rtb_state *s, rtb_real *out, int cap) {

@@ -13,7 +13,9 @@ extern "C" {
 
 /* One implicit stage of eq. (2) in its dual (dashpot force) form:
  *   y = c + h v,   v = phi(f),   f = b - K y,   b = (b1, 0, ..., 0)
- * i.e.  H(f) = f + h K phi(f) - (b - K c) = 0.                            */
+ * i.e.  H(f) = f + h K phi(f) - (b - K c) = 0.
+ * phi is the inverse of eq. (1), or of its eq. (14) smoothing when
+ * p->smoothing > 0 (dashpot_law.h, rtb_dashpot_*).                        */
 typedef struct rtb_stage {
   double h;                    /* stage step length [time] */
   double b1;                   /* Kpa * xb at the stage time [force] */

@@ -16,8 +16,14 @@
  * iteration when alpha is small (near-friction dashpots), where plain
  * Newton in f needs O(1/alpha) iterations.
  *
+ * With the eq. (14) smoothing (s > 0) the same solver runs on psi_s: it is
+ * strictly increasing, so the dual energy stays strictly convex and the
+ * variable switch is unchanged; force-updated DOFs invert psi_s by the
+ * bounded safeguarded scalar Newton of dashpot_law.h.
+ *
  * Work per stage is bounded: at most max_iter iterations, each with one
- * tridiagonal solve and at most max_backtrack+1 residual evaluations.
+ * tridiagonal solve and at most max_backtrack+1 residual evaluations (with
+ * smoothing, times at most RTB_SLAW_INV_ITERS per force-updated DOF).
  */
 #include <float.h>
 #include <math.h>
@@ -32,6 +38,7 @@ namespace {
 struct Chain {
   int n;
   double Kpa, Kr, C0, alpha, h;
+  double s;  /* eq. (14) smoothing [1/velocity], 0 = exact eq. (1) */
 };
 
 /* H = f + h K v - r; returns the max-norm (and the squared 2-norm in *sq),
@@ -56,7 +63,7 @@ double residual(const Chain &ch, const double *f, const double *v, const double 
 
 extern "C" rtb_status rtb_stage_solve(const rtb_params *p, const rtb_settings *set,
                                       const double *v_guess, rtb_stage *st) {
-  const Chain ch = {p->cells, p->Kpa, p->Kr, p->C0, p->alpha, st->h};
+  const Chain ch = {p->cells, p->Kpa, p->Kr, p->C0, p->alpha, st->h, p->smoothing};
   const int n = ch.n;
   if (n < 1 || n > RTB_MAX_CELLS) return RTB_ERR_STATE;
   double r[RTB_MAX_CELLS], H[RTB_MAX_CELLS], D[RTB_MAX_CELLS], dl[RTB_MAX_CELLS];
@@ -75,7 +82,7 @@ extern "C" rtb_status rtb_stage_solve(const rtb_params *p, const rtb_settings *s
   double *f = st->f, *v = st->v;
   for (int k = 0; k < n; ++k) {
     v[k] = v_guess ? v_guess[k] : 0.0;
-    f[k] = rtb_law_force(v[k], ch.C0, ch.alpha);
+    f[k] = rtb_dashpot_force(v[k], ch.C0, ch.alpha, ch.s);
   }
   double h2;
   double hnorm = residual(ch, f, v, r, H, &h2);
@@ -94,7 +101,7 @@ extern "C" rtb_status rtb_stage_solve(const rtb_params *p, const rtb_settings *s
 
     /* Newton step: (I + h K D) df = -H. Column k of h K D carries D[k], so
      * every D must be known before the matrix is assembled. */
-    for (int k = 0; k < n; ++k) D[k] = rtb_law_dvdf(f[k], v[k], ch.alpha);
+    for (int k = 0; k < n; ++k) D[k] = rtb_dashpot_dvdf(f[k], v[k], ch.C0, ch.alpha, ch.s);
     for (int k = 0; k < n; ++k) {
       const double hKD = ch.h * rtb_chain_diag(k, ch.Kpa, ch.Kr) * D[k];
       steep[k] = hKD > 1.0;
@@ -115,10 +122,11 @@ extern "C" rtb_status rtb_stage_solve(const rtb_params *p, const rtb_settings *s
       for (int k = 0; k < n; ++k) {
         if (steep[k]) {
           vt[k] = v[k] + t * D[k] * dl[k];
-          ft[k] = rtb_law_force(vt[k], ch.C0, ch.alpha);
+          ft[k] = rtb_dashpot_force(vt[k], ch.C0, ch.alpha, ch.s);
         } else {
           ft[k] = f[k] + t * dl[k];
-          vt[k] = rtb_law_velocity(ft[k], ch.C0, ch.alpha);
+          /* guess: the tangent prediction (warm start of the s > 0 inverse) */
+          vt[k] = rtb_dashpot_velocity(ft[k], ch.C0, ch.alpha, ch.s, v[k] + t * D[k] * dl[k]);
         }
       }
       double ht2;

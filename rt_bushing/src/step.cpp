@@ -65,7 +65,7 @@ static void stage_tangent(const rtb_params *p, const rtb_stage *st, const double
   if (n < 1 || n > RTB_MAX_CELLS) return;
   double lo[RTB_MAX_CELLS], di[RTB_MAX_CELLS], up[RTB_MAX_CELLS], work[RTB_MAX_CELLS];
   for (int k = 0; k < n; ++k) {
-    const double D = rtb_law_dvdf(st->f[k], st->v[k], p->alpha);
+    const double D = rtb_dashpot_dvdf(st->f[k], st->v[k], p->C0, p->alpha, p->smoothing);
     di[k] = 1.0 + st->h * D * rtb_chain_diag(k, p->Kpa, p->Kr);
     lo[k] = k > 0 ? -st->h * D * p->Kr : 0.0;
     up[k] = k + 1 < n ? -st->h * D * p->Kr : 0.0;
@@ -114,13 +114,20 @@ extern "C" double rtb_bushing_force(const rtb_params *p, const rtb_state *s_old,
     deta = p->mullins * (xb >= 0.0 ? 1.0 : -1.0) / s_old->xb_max;
   }
   const double sgn = xb > 0.0 ? 1.0 : (xb < 0.0 ? -1.0 : 0.0);
-  const double F = p->K0 * xb * eta          /* eq. (11): K0 y0 */
+  /* Softening spring sat_force tanh(xb / sat_disp); its slope sat_force/sat_disp sech^2. */
+  double sat = 0.0, dsat = 0.0;
+  if (p->sat_disp > 0.0) {
+    const double th = tanh(xb / p->sat_disp);
+    sat = p->sat_force * th;
+    dsat = p->sat_force / p->sat_disp * (1.0 - th * th);
+  }
+  const double F = sat + p->K0 * xb * eta          /* eq. (11): K0 y0 */
                    + p->Kpa * (xb - y1)      /* eq. (11): Kpa (y0 - y1) */
                    + p->k3 * xb * xb * xb + p->k_asym * ax +
                    p->maxwell_k * (xb - z) + p->viscous_c * (xb - s_old->xb) / dt;
   if (dF_dxb)
     *dF_dxb = p->K0 * (eta + xb * deta) + p->Kpa + 3.0 * p->k3 * xb * xb + p->k_asym * sgn +
-              p->maxwell_k + p->viscous_c / dt; /* at fixed y1 and z */
+              p->maxwell_k + p->viscous_c / dt + dsat; /* at fixed y1 and z */
   return F;
 }
 

@@ -1,0 +1,48 @@
+// preprocess_options.cpp -- the command-line face of preprocess/: the
+// options shared by identify, validate and diagnose.
+#include <cmath>
+
+#include "cli/fit_common.h"
+
+namespace rtb {
+namespace cli {
+
+std::vector<OptionSpec> preprocess_option_specs() {
+  return {
+      {"scale-time", "F", "multiply the time column by F (default 1)"},
+      {"scale-displacement", "F", "multiply the displacement column by F (e.g. 25.4: in -> mm)"},
+      {"scale-force", "F", "multiply the force column by F (e.g. 4.44822: kip -> kN)"},
+      {"lowpass", "HZ", "zero-phase low-pass of the force (2nd-order Butterworth, forward-backward)"},
+      {"mask", "T0:T1", "leave t0+T0..t0+T1 s of every record out of the misfit", false, true},
+      {"mask-reversals", "S", "leave S s after every displacement reversal out of the misfit"},
+      {"weight", "W", "misfit weight of the matching --data file (give one per file)", false, true},
+  };
+}
+
+Preprocess preprocess_from(const Args &a) {
+  Preprocess pp;
+  auto positive = [&](const char *name, double &v) {
+    if (!a.has(name)) return;
+    v = a.get_double(name, v);
+    if (!(v > 0.0 && std::isfinite(v))) throw UsageError(std::string("--") + name + " must be > 0");
+  };
+  positive("scale-time", pp.time_scale);
+  positive("scale-displacement", pp.disp_scale);
+  positive("scale-force", pp.force_scale);
+  positive("lowpass", pp.lowpass_hz);
+  positive("mask-reversals", pp.mask_after_reversal);
+  if (a.has("mask"))
+    for (const std::string &s : a.all("mask")) pp.masks.push_back(parse_time_window(s, "--mask"));
+  if (a.has("weight"))
+    for (const std::string &s : a.all("weight")) {
+      char *end = nullptr;
+      const double w = std::strtod(s.c_str(), &end);
+      if (end == s.c_str() || *end != '\0' || !(w >= 0.0) || !std::isfinite(w))
+        throw UsageError("--weight must be a finite number >= 0, got '" + s + "'");
+      pp.weights.push_back(w);
+    }
+  return pp;
+}
+
+}  // namespace cli
+}  // namespace rtb

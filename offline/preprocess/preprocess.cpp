@@ -1,0 +1,162 @@
+// preprocess.cpp -- see preprocess.h.
+#include "preprocess/preprocess.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+
+namespace rtb {
+
+bool Preprocess::active() const {
+  return time_scale != 1.0 || disp_scale != 1.0 || force_scale != 1.0 || lowpass_hz > 0.0 ||
+         !masks.empty() || mask_after_reversal > 0.0 || !weights.empty();
+}
+
+TimeWindow parse_time_window(const std::string &s, const std::string &option) {
+  const size_t c = s.find(':');
+  TimeWindow w;
+  char *e0 = nullptr, *e1 = nullptr;
+  if (c != std::string::npos) {
+    const std::string a = s.substr(0, c), b = s.substr(c + 1);
+    w.t0 = std::strtod(a.c_str(), &e0);
+    w.t1 = std::strtod(b.c_str(), &e1);
+    if (!a.empty() && !b.empty() && *e0 == '\0' && *e1 == '\0' && std::isfinite(w.t0) &&
+        std::isfinite(w.t1) && w.t1 >= w.t0)
+      return w;
+  }
+  throw InputError(option + ": expected T0:T1 in seconds with T0 <= T1, got '" + s + "'");
+}
+
+std::vector<size_t> displacement_reversals(const std::vector<double> &x, double band) {
+  std::vector<size_t> rev;
+  if (x.size() < 3) return rev;
+  // dir: +1 rising, -1 falling, 0 not yet known; ext = running extreme.
+  int dir = 0;
+  size_t ext = 0;
+  for (size_t i = 1; i < x.size(); ++i) {
+    if (dir >= 0 && x[i] > x[ext]) { ext = i; if (dir == 0 && x[i] - x[0] > band) dir = 1; }
+    else if (dir <= 0 && x[i] < x[ext]) { ext = i; if (dir == 0 && x[0] - x[i] > band) dir = -1; }
+    if (dir == 1 && x[ext] - x[i] > band) { rev.push_back(ext); dir = -1; ext = i; }
+    else if (dir == -1 && x[i] - x[ext] > band) { rev.push_back(ext); dir = 1; ext = i; }
+  }
+  return rev;
+}
+
+namespace {
+
+// 2nd-order Butterworth low-pass by the bilinear transform with pre-warping,
+// transposed direct form II, started in its steady state for the first input
+// (no start-up transient for a record that begins at a constant force).
+struct Biquad {
+  double b0, b1, b2, a1, a2;
+  Biquad(double dt, double fc) {
+    const double K = std::tan(M_PI * fc * dt), K2 = K * K, r2 = std::sqrt(2.0);
+    const double n = 1.0 / (1.0 + r2 * K + K2);
+    b0 = K2 * n;
+    b1 = 2.0 * b0;
+    b2 = b0;
+    a1 = 2.0 * (K2 - 1.0) * n;
+    a2 = (1.0 - r2 * K + K2) * n;
+  }
+  void run(std::vector<double> &y) const {
+    double z1 = (1.0 - b0) * y[0], z2 = (b2 - a2) * y[0];  // steady state, DC gain 1
+    for (double &v : y) {
+      const double u = v, out = b0 * u + z1;
+      z1 = b1 * u - a1 * out + z2;
+      z2 = b2 * u - a2 * out;
+      v = out;
+    }
+  }
+};
+
+}  // namespace
+
+std::vector<double> lowpass_zero_phase(const std::vector<double> &y, double dt, double fc) {
+  const size_t n = y.size();
+  if (n < 2 || !(fc > 0.0)) return y;
+  // Odd reflection at both ends (2 y0 - y[k]) over ~3 time constants of the
+  // filter, so the forward-backward pass has no end transients.
+  const size_t pad = std::min(n - 1, (size_t)std::ceil(3.0 / (fc * dt)));
+  std::vector<double> e;
+  e.reserve(n + 2 * pad);
+  for (size_t k = pad; k >= 1; --k) e.push_back(2.0 * y[0] - y[k]);
+  e.insert(e.end(), y.begin(), y.end());
+  for (size_t k = 1; k <= pad; ++k) e.push_back(2.0 * y[n - 1] - y[n - 1 - k]);
+  const Biquad f(dt, fc);
+  f.run(e);
+  std::reverse(e.begin(), e.end());
+  f.run(e);
+  std::reverse(e.begin(), e.end());
+  return std::vector<double>(e.begin() + (long)pad, e.begin() + (long)(pad + n));
+}
+
+namespace {
+
+void lowpass_record(Record &r, double fc) {
+  std::vector<double> h(r.t.size() - 1);
+  for (size_t i = 0; i + 1 < r.t.size(); ++i) h[i] = r.t[i + 1] - r.t[i];
+  std::vector<double> s = h;
+  std::nth_element(s.begin(), s.begin() + (long)(s.size() / 2), s.end());
+  const double dt = s[s.size() / 2];
+  for (size_t i = 0; i < h.size(); ++i)
+    if (std::fabs(h[i] - dt) > 0.05 * dt)
+      throw InputError(r.path + ": --lowpass needs a uniform time grid, but the step at t = " +
+                       std::to_string(r.t[i]) + " s is " + std::to_string(h[i]) +
+                       " s against a median of " + std::to_string(dt) + " s");
+  if (!(fc < 0.5 / dt))
+    throw InputError(r.path + ": --lowpass cut-off must be below the Nyquist frequency " +
+                     std::to_string(0.5 / dt) + " Hz");
+  r.F = lowpass_zero_phase(r.F, dt, fc);
+}
+
+void mask_window(Record &r, double t0, double t1) {
+  const double ts = r.t.front();
+  for (size_t i = 0; i < r.t.size(); ++i)
+    if (r.t[i] - ts >= t0 && r.t[i] - ts <= t1) r.masked[i] = 1;
+}
+
+}  // namespace
+
+void apply_preprocess(const Preprocess &pp, std::vector<Record> &recs, bool use_weights) {
+  if (use_weights && !pp.weights.empty() && pp.weights.size() != recs.size())
+    throw InputError("--weight given " + std::to_string(pp.weights.size()) +
+                     " time(s) for " + std::to_string(recs.size()) + " --data file(s): give one per file");
+  for (size_t k = 0; k < recs.size(); ++k) {
+    Record &r = recs[k];
+    for (double &v : r.t) v *= pp.time_scale;
+    for (double &v : r.x) v *= pp.disp_scale;
+    for (double &v : r.F) v *= pp.force_scale;
+    if (pp.lowpass_hz > 0.0) lowpass_record(r, pp.lowpass_hz);
+    if (!pp.masks.empty() || pp.mask_after_reversal > 0.0) {
+      r.masked.assign(r.t.size(), 0);
+      for (const TimeWindow &w : pp.masks) mask_window(r, w.t0, w.t1);
+      if (pp.mask_after_reversal > 0.0) {
+        const auto mm = std::minmax_element(r.x.begin(), r.x.end());
+        const double t0 = r.t.front();
+        for (size_t i : displacement_reversals(r.x, 0.01 * (*mm.second - *mm.first)))
+          mask_window(r, r.t[i] - t0, r.t[i] - t0 + pp.mask_after_reversal);
+      }
+      if (std::count(r.masked.begin(), r.masked.end(), 0) < kMinSamples)
+        throw InputError(r.path + ": the masks leave fewer than " + std::to_string(kMinSamples) +
+                         " samples in the misfit");
+    }
+    if (use_weights && !pp.weights.empty()) r.weight = pp.weights[k];
+  }
+}
+
+nlohmann::ordered_json preprocess_json(const Preprocess &pp) {
+  nlohmann::ordered_json j;
+  j["time_scale"] = pp.time_scale;
+  j["displacement_scale"] = pp.disp_scale;
+  j["force_scale"] = pp.force_scale;
+  j["lowpass_hz"] = pp.lowpass_hz;
+  j["lowpass"] = pp.lowpass_hz > 0.0 ? "2nd-order Butterworth, forward-backward (zero phase)" : "off";
+  nlohmann::ordered_json m = nlohmann::ordered_json::array();
+  for (const TimeWindow &w : pp.masks) m.push_back({w.t0, w.t1});
+  j["masks_s"] = m;
+  j["mask_after_reversal_s"] = pp.mask_after_reversal;
+  j["weights"] = pp.weights;
+  return j;
+}
+
+}  // namespace rtb

@@ -1,0 +1,115 @@
+// study.cpp -- run_study(): the numbers of one real-data study. The page
+// itself is written by study_page.cpp.
+#include "report/study.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+
+#include "diagnose/extended_fit.h"
+#include "model/misfit_norms.h"
+
+namespace rtb {
+
+namespace {
+
+MisfitNorms norms_of(const ExtModel &m, const Record &rec, const SimOptions &sim) {
+  Eigen::VectorXd F;
+  predict_extended(m, rec, sim, ExtFitSpec{}, F, nullptr);
+  return misfit_norms(rec.t, std::vector<double>(F.data(), F.data() + F.size()), rec.F, rec.masked);
+}
+
+// Start values of a second extension stacked on the chosen one: positive
+// parameters need a positive start in their log coordinate.
+void seed_extra(const Candidate &c, const DataScales &sc, ExtModel &m) {
+  for (ParamId id : c.extra) {
+    double &v = param_ref(m.p, id);
+    if (v != 0.0) continue;
+    switch (id) {
+      case P_viscous_c: v = 0.02 * sc.Fmax / sc.Vmax; break;
+      case P_mass: v = 0.02 * sc.Fmax / sc.Amax; break;
+      case P_maxwell_k: v = 0.1 * sc.Ksec; break;
+      case P_maxwell_tau: v = 0.1 * sc.duration; break;
+      case P_mullins: v = 0.1; break;
+      case P_backlash: v = 0.02 * sc.Xmax; break;
+      case P_sat_force: v = 0.05 * sc.Fmax; break;
+      case P_sat_disp: v = 0.1 * sc.Xmax; break;
+      default: break;  // signed parameters start at 0
+    }
+  }
+  if (c.delay && m.delay == 0.0) m.delay = 2.0 * sc.dt;
+}
+
+}  // namespace
+
+StudyResult run_study(const StudySpec &spec, const std::string &data_dir, bool quiet) {
+  const auto t0 = std::chrono::steady_clock::now();
+  StudyResult r;
+  std::vector<Record> fit, val;
+  for (const std::string &f : spec.fit_files) fit.push_back(read_record_csv(data_dir + "/" + f));
+  for (const std::string &f : spec.validation_files) val.push_back(read_record_csv(data_dir + "/" + f));
+  apply_preprocess(spec.pre, fit, true);
+  apply_preprocess(spec.pre, val, false);
+  DiagnoseOptions o = spec.diag;
+  o.quiet = quiet;
+  r.diag = diagnose(fit, val, o);
+  const DiagnoseResult &D = r.diag;
+
+  std::vector<MisfitNorms> fb, fe, vb, ve;
+  std::vector<double> fw;
+  auto add = [&](const Record &rec, bool validation) {
+    FileFigures f;
+    f.path = rec.path;
+    f.validation = validation;
+    const MisfitNorms b = norms_of(D.baseline, rec, o.misfit.sim), e = norms_of(D.extended, rec, o.misfit.sim);
+    f.err_base = b.relative_error();
+    f.err_ext = e.relative_error();
+    f.nrmse_base = b.nrmse_percent();
+    f.nrmse_ext = e.nrmse_percent();
+    (validation ? vb : fb).push_back(b);
+    (validation ? ve : fe).push_back(e);
+    if (!validation) fw.push_back(rec.weight);
+    r.files.push_back(f);
+  };
+  for (const Record &rec : fit) add(rec, false);
+  for (const Record &rec : val) add(rec, true);
+  r.err_fit_base = combined_relative_error(fb, fw);
+  r.err_fit_ext = combined_relative_error(fe, fw);
+  r.err_val_base = combined_relative_error(vb);
+  r.err_val_ext = combined_relative_error(ve);
+
+  // What is left after the extension: each listed candidate stacked on the
+  // chosen cause, fitted jointly again.
+  if (D.chosen >= 0) {
+    const CandidateOutcome &ch = D.candidates[(size_t)D.chosen];
+    const DataScales sc = data_scales(fit);
+    for (const std::string &name : spec.second_stage) {
+      if (name == ch.cand.name) continue;
+      for (const Candidate &c : candidate_vocabulary()) {
+        if (c.name != name) continue;
+        ExtFitSpec s2 = candidate_spec(ch.cand, sc);
+        const ExtFitSpec add2 = candidate_spec(c, sc);
+        s2.free.insert(s2.free.end(), c.extra.begin(), c.extra.end());
+        for (ParamId id : c.extra) s2.scale[id] = add2.scale[id];
+        s2.fit_delay = s2.fit_delay || c.delay;
+        s2.fit_offset = s2.fit_offset || c.offset;
+        ExtModel m = D.extended;
+        seed_extra(c, sc, m);
+        if (!quiet) std::fprintf(stderr, "report: %s + %s\n", ch.cand.name.c_str(), name.c_str());
+        const ExtFitResult f = fit_extended(fit, m, s2, o.misfit);
+        SecondStage st;
+        st.name = name;
+        st.error_fit = f.error;
+        MisfitOptions hold = o.misfit;
+        hold.fit_from = 0.0;
+        st.error_validation = extended_error(f.model, val, hold);
+        st.effect = describe_effect(c, f.model);
+        r.second.push_back(st);
+      }
+    }
+  }
+  r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return r;
+}
+
+}  // namespace rtb
