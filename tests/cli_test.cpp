@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "cli_path.h"
 #include "offline/io/csv.h"
 #include "offline/io/params_json.h"
 #include "offline/model/misfit_norms.h"
@@ -26,11 +27,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-#ifdef RTB_CLI_PATH
-const std::string kRtb = RTB_CLI_PATH;
-#else
-const std::string kRtb = std::string(RTB_BINARY_DIR) + "/rtb";
-#endif
+using rtb_test::kRtb;
 
 std::string shell_quote(const std::string &s) {
   std::string out = "'";

@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "cli_path.h"
 #include "temp_dir.h"
 #include "offline/report/gnuplot_figure.h"
 #include "offline/report/paper_figures.h"
@@ -28,11 +29,7 @@ using namespace rtb;
 
 namespace {
 
-#ifdef RTB_CLI_PATH
-const std::string kRtb = RTB_CLI_PATH;
-#else
-const std::string kRtb = std::string(RTB_BINARY_DIR) + "/rtb";
-#endif
+using rtb_test::kRtb;
 
 #define SKIP_WITHOUT_GNUPLOT()                                                         \
   if (!gnuplot_available())                                                            \

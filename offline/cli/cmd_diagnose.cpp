@@ -38,12 +38,7 @@ int run_diagnose(int argc, char **argv) {
       },
       "delay and offset are measurement-chain artefacts: they are estimated and\n"
       "corrected in the data, never put into the real-time element."};
-  static const CommandSpec full = [] {
-    CommandSpec c = spec;
-    const std::vector<OptionSpec> pre = preprocess_option_specs();
-    c.options.insert(c.options.end(), pre.begin(), pre.end());
-    return c;
-  }();
+  static const CommandSpec full = with_preprocess_options(spec);
   Args a;
   if (parse_or_help(full, argc, argv, a)) return kExitOk;
   DiagnoseOptions o;

@@ -41,12 +41,7 @@ int run_validate(int argc, char **argv) {
       },
       "overall error = sqrt(sum J / sum J0) over all files.\n"
       "NRMSE = 100 * RMS(F_model - F_exp) / (max F_exp - min F_exp), per sample."};
-  static const CommandSpec full = [] {
-    CommandSpec c = spec;
-    const std::vector<OptionSpec> pre = preprocess_option_specs();
-    c.options.insert(c.options.end(), pre.begin(), pre.end());
-    return c;
-  }();
+  static const CommandSpec full = with_preprocess_options(spec);
   Args a;
   if (parse_or_help(full, argc, argv, a)) return kExitOk;
 

@@ -32,6 +32,7 @@ struct FitSetup {
 
 // --scale-*, --lowpass, --mask, --mask-reversals, --weight (preprocess_options.cpp).
 std::vector<OptionSpec> preprocess_option_specs();
+CommandSpec with_preprocess_options(CommandSpec spec);  // spec + the options above
 Preprocess preprocess_from(const Args &a);
 
 // The common options: --data, --cells, --method, --init, --alpha0,

@@ -19,6 +19,12 @@ std::vector<OptionSpec> preprocess_option_specs() {
   };
 }
 
+CommandSpec with_preprocess_options(CommandSpec spec) {
+  const std::vector<OptionSpec> pre = preprocess_option_specs();
+  spec.options.insert(spec.options.end(), pre.begin(), pre.end());
+  return spec;
+}
+
 Preprocess preprocess_from(const Args &a) {
   Preprocess pp;
   auto positive = [&](const char *name, double &v) {

@@ -71,6 +71,20 @@ ExtFitSpec candidate_spec(const Candidate &c, const DataScales &s) {
   return spec;
 }
 
+double extra_start_value(ParamId id, const DataScales &s) {
+  switch (id) {
+    case P_viscous_c: return 0.02 * s.Fmax / s.Vmax;
+    case P_mass: return 0.02 * s.Fmax / s.Amax;
+    case P_maxwell_k: return 0.1 * s.Ksec;
+    case P_maxwell_tau: return 0.1 * s.duration;
+    case P_mullins: return 0.1;
+    case P_backlash: return 0.02 * s.Xmax;
+    case P_sat_force: return 0.05 * s.Fmax;
+    case P_sat_disp: return 0.1 * s.Xmax;
+    default: return 0.0;
+  }
+}
+
 std::string describe_effect(const Candidate &c, const ExtModel &m) {
   char b[200];
   const rtb_params &p = m.p;

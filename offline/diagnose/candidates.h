@@ -34,6 +34,11 @@ ExtFitSpec candidate_spec(const Candidate &c, const DataScales &s);
 // One line describing the fitted effect, e.g. "backlash of 0.0312".
 std::string describe_effect(const Candidate &c, const ExtModel &m);
 
+// A default positive start for an extension parameter that must be positive
+// (its optimizer coordinate is a log): a small effect on the data's scales.
+// 0 for signed parameters, which start at 0.
+double extra_start_value(ParamId id, const DataScales &s);
+
 }  // namespace rtb
 
 #endif

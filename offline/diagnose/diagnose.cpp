@@ -124,12 +124,12 @@ CandidateScreen screen_candidate(const Candidate &c, const ExtModel &base,
     }
     if (s.dJ == 0.0) {  // no positive stiffness helps at any tau: report the best anyway
       ExtModel m = base;
-      m.p.maxwell_tau = 0.1 * sc.duration;
+      m.p.maxwell_tau = extra_start_value(P_maxwell_tau, sc);
       joint_linear(rt, screen_columns(m, fit, opt, spec).g, s);
       s.start = m;
     }
     s.plausible = s.value > 0.0;
-    s.start.p.maxwell_k = s.plausible ? s.value : 0.1 * sc.Ksec;
+    s.start.p.maxwell_k = s.plausible ? s.value : extra_start_value(P_maxwell_k, sc);
     return s;
   }
   if (c.name == "softening") {
@@ -149,8 +149,8 @@ CandidateScreen screen_candidate(const Candidate &c, const ExtModel &base,
       }
     }
     s.plausible = s.value > 0.0;
-    if (s.start.p.sat_disp == 0.0) s.start.p.sat_disp = 0.1 * sc.Xmax;
-    s.start.p.sat_force = s.plausible ? s.value : 0.05 * sc.Fmax;
+    if (s.start.p.sat_disp == 0.0) s.start.p.sat_disp = extra_start_value(P_sat_disp, sc);
+    s.start.p.sat_force = s.plausible ? s.value : extra_start_value(P_sat_force, sc);
     return s;
   }
   if (c.name == "backlash") {
@@ -187,10 +187,9 @@ CandidateScreen screen_candidate(const Candidate &c, const ExtModel &base,
     double v = s.value;
     // A wrong-signed screen (the baseline absorbed part of the effect) still
     // gets a joint fit if it ranks high, from a default positive size.
-    if (id == P_mullins) v = v > 0.0 ? std::min(v, 0.9) : 0.1;
+    if (id == P_mullins && v > 0.0) v = std::min(v, 0.9);
     if (id == P_k_asym) v = std::max(-0.9 * s.start.p.K0, std::min(0.9 * s.start.p.K0, v));
-    if (id == P_viscous_c && !(v > 0.0)) v = 0.02 * sc.Fmax / sc.Vmax;
-    if (id == P_mass && !(v > 0.0)) v = 0.02 * sc.Fmax / sc.Amax;
+    if (positive && !(v > 0.0)) v = extra_start_value(id, sc);
     param_ref(s.start.p, id) = v;
   }
   if (c.delay) {

@@ -22,21 +22,8 @@ MisfitNorms norms_of(const ExtModel &m, const Record &rec, const SimOptions &sim
 // Start values of a second extension stacked on the chosen one: positive
 // parameters need a positive start in their log coordinate.
 void seed_extra(const Candidate &c, const DataScales &sc, ExtModel &m) {
-  for (ParamId id : c.extra) {
-    double &v = param_ref(m.p, id);
-    if (v != 0.0) continue;
-    switch (id) {
-      case P_viscous_c: v = 0.02 * sc.Fmax / sc.Vmax; break;
-      case P_mass: v = 0.02 * sc.Fmax / sc.Amax; break;
-      case P_maxwell_k: v = 0.1 * sc.Ksec; break;
-      case P_maxwell_tau: v = 0.1 * sc.duration; break;
-      case P_mullins: v = 0.1; break;
-      case P_backlash: v = 0.02 * sc.Xmax; break;
-      case P_sat_force: v = 0.05 * sc.Fmax; break;
-      case P_sat_disp: v = 0.1 * sc.Xmax; break;
-      default: break;  // signed parameters start at 0
-    }
-  }
+  for (ParamId id : c.extra)
+    if (param_get(m.p, id) == 0.0) param_ref(m.p, id) = extra_start_value(id, sc);
   if (c.delay && m.delay == 0.0) m.delay = 2.0 * sc.dt;
 }
 
@@ -45,7 +32,7 @@ void seed_extra(const Candidate &c, const DataScales &sc, ExtModel &m) {
 StudyResult run_study(const StudySpec &spec, const std::string &data_dir, bool quiet) {
   const auto t0 = std::chrono::steady_clock::now();
   StudyResult r;
-  std::vector<Record> fit, val;
+  std::vector<Record> &fit = r.fit, &val = r.validation;
   for (const std::string &f : spec.fit_files) fit.push_back(read_record_csv(data_dir + "/" + f));
   for (const std::string &f : spec.validation_files) val.push_back(read_record_csv(data_dir + "/" + f));
   apply_preprocess(spec.pre, fit, true);

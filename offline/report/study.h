@@ -39,6 +39,7 @@ struct SecondStage {
 };
 
 struct StudyResult {
+  std::vector<Record> fit, validation;  // as fitted: after preprocessing
   DiagnoseResult diag;
   std::vector<FileFigures> files;
   double err_fit_base = 0, err_fit_ext = 0, err_val_base = 0, err_val_ext = 0;

@@ -111,10 +111,7 @@ std::string figures(const StudySpec &spec, const StudyResult &r, const std::stri
   const std::string X = "displacement [" + spec.length_unit + "]";
   const std::string F = "force [" + spec.force_unit + "]";
   std::ostringstream md;
-  std::vector<Record> fit, val;
-  for (const FileFigures &f : r.files) (f.validation ? val : fit).push_back(read_record_csv(f.path));
-  apply_preprocess(spec.pre, fit, true);
-  apply_preprocess(spec.pre, val, false);
+  const std::vector<Record> &fit = r.fit, &val = r.validation;
   const SimOptions &sim = spec.diag.misfit.sim;
   auto series = [](const std::string &l, const std::vector<double> &x, const std::vector<double> &y,
                    const std::string &st) { return Series{l, x, y, st}; };
