@@ -117,6 +117,35 @@ TEST(IoCsv, MissingColumnIsNamed) {
   }
 }
 
+TEST(IoCsv, ColumnNamesWithUnitsAndCommonAliases) {
+  TempDir d;
+  const char *headers[] = {"t,x,F", "Time [s],Disp (mm),Force [N]", "time_s,displacement_mm,force_kN",
+                           "load,stroke,time", "sample,T,u,f,temperature"};
+  for (const char *h : headers) {
+    const std::string p = d.file("h.csv");
+    const bool five = std::string(h).rfind("sample", 0) == 0;
+    const bool load_first = std::string(h).rfind("load", 0) == 0;
+    std::string body;
+    for (int i = 0; i < 10; ++i) {
+      const double t = 0.01 * i, x = 0.1 * i, F = 100.0 * i;
+      char row[160];
+      if (five) std::snprintf(row, sizeof row, "%d,%g,%g,%g,20\n", i, t, x, F);
+      else if (load_first) std::snprintf(row, sizeof row, "%g,%g,%g\n", F, x, t);
+      else std::snprintf(row, sizeof row, "%g,%g,%g\n", t, x, F);
+      body += row;
+    }
+    write_text(p, std::string(h) + "\n" + body);
+    const rtb::Record r = rtb::read_record_csv(p);
+    ASSERT_EQ(r.t.size(), 10u) << h;
+    EXPECT_DOUBLE_EQ(r.t[3], 0.03) << h;
+    EXPECT_DOUBLE_EQ(r.x[3], 0.3) << h;
+    EXPECT_DOUBLE_EQ(r.F[3], 300.0) << h;
+  }
+  // Two columns for one role are an error naming both.
+  write_text(d.file("a.csv"), "time,x,displacement,force\n" + rows(10));
+  expect_input_error(d.file("a.csv"), {"'displacement'", "twice", "\"x\"", "\"displacement\""});
+}
+
 TEST(IoCsv, DuplicateColumnRejected) {
   TempDir d;
   write_text(d.file("a.csv"), "time,displacement,force,Time\n" + rows(10));

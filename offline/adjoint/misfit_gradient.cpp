@@ -2,6 +2,7 @@
 // over whole records, built from the per-step linearization.
 #include "adjoint/misfit_gradient.h"
 
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <random>
@@ -145,17 +146,27 @@ void record_sensitivities(const rtb_params &p, const Record &rec, const SimOptio
   const Eigen::Index n = (Eigen::Index)rec.F.size();
   F = Eigen::Map<const Eigen::VectorXd>(tr.force.data() + g.first_sample, n);
   if (!jac) return;
-  jac->setZero(n, (Eigen::Index)free.size());
-  StateDual d, dn;
-  for (size_t c = 0; c < free.size(); ++c) {
-    double dp[P_COUNT] = {0};
-    dp[free[c]] = 1.0;
-    d.clear();
-    for (size_t i = 1; i < g.x.size(); ++i) {
+  const size_t nc = free.size();
+  jac->setZero(n, (Eigen::Index)nc);
+  // All columns advance together, step by step, so that the step's
+  // linearization (dashpot partials: powers and logs) is computed once.
+  std::vector<StateDual> d(nc);
+  std::vector<std::array<double, P_COUNT>> dp(nc);
+  for (size_t c = 0; c < nc; ++c) {
+    d[c].clear();
+    dp[c].fill(0.0);
+    dp[c][free[c]] = 1.0;
+  }
+  StateDual dn;
+  StageLin lin[2];
+  for (size_t i = 1; i < g.x.size(); ++i) {
+    StepView v = tr.step(p, g, i);
+    step_precompute(v, lin);
+    for (size_t c = 0; c < nc; ++c) {
       dn.clear();
-      const double dF = step_jvp(tr.step(p, g, i), d, dp, dn);
+      const double dF = step_jvp(v, d[c], dp[c].data(), dn);
       if ((int)i >= g.first_sample) (*jac)((Eigen::Index)i - g.first_sample, (Eigen::Index)c) = dF;
-      d = dn;
+      d[c] = dn;
     }
   }
 }

@@ -24,7 +24,8 @@ constexpr double kRho = (1.0 - kGamma) / kGamma;  // c2 = y + rho (Y1 - y)
 void stage_matrix(const rtb_params &p, const StageView &st, bool transpose, double *lo,
                   double *di, double *up, double *D) {
   const int n = p.cells;
-  for (int k = 0; k < n; ++k) D[k] = rtb_dashpot_dvdf(st.f[k], st.v[k], p.C0, p.alpha, p.smoothing);
+  for (int k = 0; k < n; ++k)
+    D[k] = st.lin ? st.lin->D[k] : rtb_dashpot_dvdf(st.f[k], st.v[k], p.C0, p.alpha, p.smoothing);
   for (int k = 0; k < n; ++k) {
     di[k] = 1.0 + st.h * D[k] * rtb_chain_diag(k, p.Kpa, p.Kr);
     const int l = transpose ? k - 1 : k, u = transpose ? k + 1 : k;
@@ -41,6 +42,15 @@ double dK_dKr_row(const StageView &st, int k, int n) {
   return s;
 }
 
+double dv_dC0(const rtb_params &p, const StageView &st, int k) {
+  return st.lin ? st.lin->dv_dC0[k]
+                : rtb_dashpot_dv_dC0(st.f[k], st.v[k], p.C0, p.alpha, p.smoothing);
+}
+double dv_dalpha(const rtb_params &p, const StageView &st, int k) {
+  return st.lin ? st.lin->dv_dalpha[k]
+                : rtb_dashpot_dv_dalpha(st.f[k], st.v[k], p.C0, p.alpha, p.smoothing);
+}
+
 // dY = A^-1 [dc + h D e1 db1 - h D (dK Y) + h phi_p dp].
 void stage_jvp(const rtb_params &p, const StageView &st, const double *dc, double db1,
                const double *dp, double *dY) {
@@ -51,9 +61,7 @@ void stage_jvp(const rtb_params &p, const StageView &st, const double *dc, doubl
   for (int k = 0; k < n; ++k) {
     const double dKY = dp[P_Kr] * dK_dKr_row(st, k, n) + (k == 0 ? dp[P_Kpa] * st.y[0] : 0.0);
     dY[k] = dc[k] + st.h * D[k] * ((k == 0 ? db1 : 0.0) - dKY) +
-            st.h * (rtb_dashpot_dv_dC0(st.f[k], st.v[k], p.C0, p.alpha, p.smoothing) * dp[P_C0] +
-                    rtb_dashpot_dv_dalpha(st.f[k], st.v[k], p.C0, p.alpha, p.smoothing) *
-                        dp[P_alpha]);
+            st.h * (dv_dC0(p, st, k) * dp[P_C0] + dv_dalpha(p, st, k) * dp[P_alpha]);
   }
   rtb_tridiag_solve(n, lo, di, up, dY, work);
 }
@@ -70,9 +78,8 @@ double stage_vjp(const rtb_params &p, const StageView &st, const double *Ybar, d
   for (int k = 0; k < n; ++k) {
     cbar[k] += mu[k];
     pbar[P_Kr] -= st.h * D[k] * mu[k] * dK_dKr_row(st, k, n);
-    pbar[P_C0] += st.h * mu[k] * rtb_dashpot_dv_dC0(st.f[k], st.v[k], p.C0, p.alpha, p.smoothing);
-    pbar[P_alpha] +=
-        st.h * mu[k] * rtb_dashpot_dv_dalpha(st.f[k], st.v[k], p.C0, p.alpha, p.smoothing);
+    pbar[P_C0] += st.h * mu[k] * dv_dC0(p, st, k);
+    pbar[P_alpha] += st.h * mu[k] * dv_dalpha(p, st, k);
   }
   pbar[P_Kpa] -= st.h * D[0] * mu[0] * st.y[0];
   return st.h * D[0] * mu[0];
@@ -252,6 +259,20 @@ void clearance_vjp(const StepView &v, double xbbar, StateDual &bo, double *pbar)
 }
 
 }  // namespace
+
+void step_precompute(StepView &v, StageLin lin[2]) {
+  const rtb_params &p = *v.p;
+  if (p.model != RTB_MODEL_RT) return;
+  for (int s = 0; s < rtb_integrator_stages(&p); ++s) {
+    const StageView &st = v.st[s];
+    for (int k = 0; k < p.cells; ++k) {
+      lin[s].D[k] = rtb_dashpot_dvdf(st.f[k], st.v[k], p.C0, p.alpha, p.smoothing);
+      lin[s].dv_dC0[k] = rtb_dashpot_dv_dC0(st.f[k], st.v[k], p.C0, p.alpha, p.smoothing);
+      lin[s].dv_dalpha[k] = rtb_dashpot_dv_dalpha(st.f[k], st.v[k], p.C0, p.alpha, p.smoothing);
+    }
+    v.st[s].lin = &lin[s];
+  }
+}
 
 double step_jvp(const StepView &v, const StateDual &d_old, const double *dp, StateDual &d_new) {
   const double dxb = clearance_jvp(v, d_old, dp);

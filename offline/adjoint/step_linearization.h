@@ -30,6 +30,10 @@ struct StateDual {
   void clear();
 };
 
+// Fill lin[s] with stage s's dashpot partials and point v.st[s].lin at it:
+// step_jvp then reuses them for every parameter direction (a Jacobian).
+void step_precompute(StepView &v, StageLin lin[2]);
+
 // d_new and the returned dF from d_old and the parameter direction dp.
 double step_jvp(const StepView &v, const StateDual &d_old, const double *dp, StateDual &d_new);
 // Transpose: given the cotangents of the new state and of F, accumulate into

@@ -96,6 +96,7 @@ nlohmann::ordered_json diagnosis_json(const DiagnoseResult &R, const std::vector
     e["eligible"] = c.eligible;
     if (!c.eligible) e["why_not"] = c.why;
     e["iterations"] = c.fit.iterations;
+    e["seconds"] = {{"screen", c.screen.seconds}, {"joint_fit", c.fit_seconds}};
     cs.push_back(e);
   }
   j["candidates"] = cs;
@@ -105,6 +106,8 @@ nlohmann::ordered_json diagnosis_json(const DiagnoseResult &R, const std::vector
   for (const Record &r : hold) files.push_back({{"path", r.path}, {"sha256", r.sha256}, {"role", "holdout"}});
   j["data"] = files;
   j["wall_time_s"] = R.wall_seconds;
+  j["time_split_s"] = {{"baseline", R.seconds_baseline}, {"screen", R.seconds_screen},
+                       {"joint_fits", R.seconds_joint}};
   j["tool"] = tool_version();
   return j;
 }

@@ -66,6 +66,9 @@ ExtFitSpec candidate_spec(const Candidate &c, const DataScales &s) {
   spec.fit_offset = c.offset;
   spec.scale[P_k3] = 0.1 * s.Fmax / (s.Xmax * s.Xmax * s.Xmax);
   spec.scale[P_k_asym] = 0.1 * s.Ksec;
+  // Step unit of the sizes optimized linearly from 0 (param_transform.h).
+  for (ParamId id : c.extra)
+    if (is_ramp(id) && id != P_mullins) spec.scale[id] = extra_start_value(id, s);
   spec.delay_scale = 10.0 * s.dt;
   spec.offset_scale = 0.01 * s.Fmax;
   return spec;

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <iterator>
 #include <thread>
 
 #include "identify/sts_init.h"
@@ -96,12 +97,20 @@ void apply_rt_step(const Eigen::VectorXd &d, rtb_params &p) {
     const double rel = std::max(-0.5, std::min(0.5, d[(Eigen::Index)i] / v));
     v *= std::exp(rel);
   }
-  p.alpha = std::min(p.alpha, 0.95);
+  // alpha stays inside the admissible range (a baseline at the floor
+  // RTB_ALPHA_MIN, friction-like, must not be stepped below it).
+  p.alpha = std::max(std::min(p.alpha, 0.95), 1.01 * RTB_ALPHA_MIN);
 }
+
+// Starting gaps of the backlash screen, as fractions of the stroke: a
+// clearance much wider than the first is a different basin (a friction
+// device with a 10%-of-stroke play, e.g.). Each start is its own screening
+// job, so the two short fits run in parallel.
+constexpr double kBacklashStarts[] = {0.02, 0.1};
 
 CandidateScreen screen_candidate(const Candidate &c, const ExtModel &base,
                                  const std::vector<Record> &fit, const MisfitOptions &opt,
-                                 const DataScales &sc, const Columns &rt) {
+                                 const DataScales &sc, const Columns &rt, int variant) {
   CandidateScreen s;
   s.start = base;
   ExtFitSpec spec;
@@ -154,21 +163,13 @@ CandidateScreen screen_candidate(const Candidate &c, const ExtModel &base,
     return s;
   }
   if (c.name == "backlash") {
-    // Not differentiable at g = 0: a short joint fit (RT + g) from a small
-    // gap; with RT held the baseline's compensation would hide the gap.
-    // Two gap sizes: a clearance much wider than the start is a different
-    // basin (a friction device with a 10%-of-stroke play, e.g.).
+    // Not differentiable at g = 0: a short joint fit (RT + g) from a gap;
+    // with RT held the baseline's compensation would hide the gap.
     ExtFitSpec one = candidate_spec(c, sc);
     one.max_iter = 6;
-    ExtFitResult f;
-    bool have = false;
-    for (double g : {0.02, 0.1}) {
-      ExtModel m = base;
-      m.p.backlash = g * sc.Xmax;
-      ExtFitResult t = fit_extended(fit, m, one, opt);
-      if (!have || t.J < f.J) f = std::move(t);
-      have = true;
-    }
+    ExtModel m = base;
+    m.p.backlash = kBacklashStarts[variant] * sc.Xmax;
+    const ExtFitResult f = fit_extended(fit, m, one, opt);
     const double r2 = rt.r.squaredNorm();
     s.value = f.model.p.backlash;
     s.dJ = r2 > 0 ? std::max(0.0, 1.0 - f.J / (0.5 * r2)) : 0.0;
@@ -221,7 +222,12 @@ DiagnoseResult diagnose(const std::vector<Record> &fit, const std::vector<Record
   IdentifyOptions io;
   io.misfit = opt.misfit;
   io.quiet = opt.quiet;
+  io.max_iter = opt.baseline_max_iter;
+  auto since = [](std::chrono::steady_clock::time_point a) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - a).count();
+  };
   R.baseline_fit = identify(fit, start, io);
+  R.seconds_baseline = since(t0);
   // A second round starts here when a candidate's joint fit shows that the
   // baseline sat in a poor basin (see the end of step 4).
   for (int round = 0;; ++round) {
@@ -249,17 +255,35 @@ DiagnoseResult diagnose(const std::vector<Record> &fit, const std::vector<Record
       if (opt.only.empty() || std::find(opt.only.begin(), opt.only.end(), c.name) != opt.only.end())
         cands.push_back(c);
     std::vector<CandidateOutcome> out(cands.size());
-    std::vector<size_t> screen_jobs;
+    // Screening jobs (candidate, variant), the long backlash fits first.
+    std::vector<std::pair<size_t, int>> jobs;
     for (size_t i = 0; i < cands.size(); ++i) {
       out[i].cand = cands[i];
-      screen_jobs.push_back(i);
+      if (cands[i].name == "backlash")
+        for (int v = 0; v < (int)std::size(kBacklashStarts); ++v) jobs.insert(jobs.begin(), {i, v});
+      else
+        jobs.push_back({i, 0});
     }
+    const auto t_screen = std::chrono::steady_clock::now();
     ExtFitSpec core;
     const Columns rt = screen_columns(R.baseline, fit, opt.misfit, core);
-    parallel_for(screen_jobs.size(), opt.threads, [&](size_t k) {
-      const size_t i = screen_jobs[k];
-      out[i].screen = screen_candidate(cands[i], R.baseline, fit, opt.misfit, sc, rt);
+    std::vector<CandidateScreen> screens(jobs.size());
+    parallel_for(jobs.size(), opt.threads, [&](size_t k) {
+      const auto t1 = std::chrono::steady_clock::now();
+      screens[k] = screen_candidate(cands[jobs[k].first], R.baseline, fit, opt.misfit, sc, rt,
+                                    jobs[k].second);
+      screens[k].seconds = since(t1);
     });
+    // A candidate's screen is its best variant (largest misfit reduction).
+    std::vector<bool> have(cands.size(), false);
+    for (size_t k = 0; k < jobs.size(); ++k) {
+      CandidateScreen &s = out[jobs[k].first].screen;
+      const double spent = s.seconds + screens[k].seconds;
+      if (!have[jobs[k].first] || screens[k].dJ > s.dJ) s = screens[k];
+      s.seconds = spent;
+      have[jobs[k].first] = true;
+    }
+    R.seconds_screen += since(t_screen);
     // 3b. Joint fits of the most promising candidates.
     std::vector<size_t> order;
     for (size_t i = 0; i < out.size(); ++i)
@@ -267,23 +291,30 @@ DiagnoseResult diagnose(const std::vector<Record> &fit, const std::vector<Record
     std::sort(order.begin(), order.end(),
               [&](size_t p, size_t q) { return out[p].screen.dJ > out[q].screen.dJ; });
     if ((int)order.size() > opt.joint_fits) order.resize((size_t)opt.joint_fits);
+    const auto t_joint = std::chrono::steady_clock::now();
     parallel_for(order.size(), opt.threads, [&](size_t k) {
       CandidateOutcome &co = out[order[k]];
+      const auto t1 = std::chrono::steady_clock::now();
       try {
         co.fit = fit_extended(fit, co.screen.start, candidate_spec(co.cand, sc), opt.misfit);
         co.joint = std::isfinite(co.fit.J);
-      } catch (const std::exception &) {
+        if (!co.joint) co.why = "joint fit failed: non-finite misfit";
+      } catch (const std::exception &e) {
         co.joint = false;
+        co.why = std::string("joint fit failed: ") + e.what();
       }
+      co.fit_seconds = since(t1);
     });
+    R.seconds_joint += since(t_joint);
 
     // 4. Criteria and choice.
     for (CandidateOutcome &co : out) {
       if (!co.joint) {
         co.error_holdout = NAN;
         co.fit.error = NAN;
-        co.why = co.screen.z < opt.min_z ? "screened out: effect not significant"
-                                          : "screened out: smaller misfit reduction than others";
+        if (co.why.empty())
+          co.why = co.screen.z < opt.min_z ? "screened out: effect not significant"
+                                            : "screened out: smaller misfit reduction than others";
         R.candidates.push_back(co);
         continue;
       }
@@ -326,7 +357,9 @@ DiagnoseResult diagnose(const std::vector<Record> &fit, const std::vector<Record
       std::fprintf(stderr, "diagnose: the %s fit found a better RT basin (%.3f%% < %.3f%%): refitting "
                    "the baseline from it\n", better->cand.name.c_str(), 100 * better->fit.error,
                    100 * R.baseline_error_fit);
+    const auto t_again = std::chrono::steady_clock::now();
     IdentifyResult again = identify(fit, restart, io);
+    R.seconds_baseline += since(t_again);
     if (!(again.J < R.baseline_fit.J)) break;
     R.baseline_fit = again;
   }  // rounds

@@ -84,7 +84,8 @@ ExtFitResult fit_extended(const std::vector<Record> &recs, const ExtModel &start
                           const ExtFitSpec &spec, const MisfitOptions &opt) {
   ParamTransform tf(spec.free, start.p, stiffness_cap_for(recs));
   for (ParamId id : spec.free)
-    if (param_get(start.p, id) == 0.0 && spec.scale[id] > 0.0) tf.scale[id] = spec.scale[id];
+    if (spec.scale[id] > 0.0 && (param_get(start.p, id) == 0.0 || is_ramp(id)))
+      tf.scale[id] = std::fmax(std::fabs(param_get(start.p, id)), spec.scale[id]);
   const Eigen::Index P = (Eigen::Index)spec.free.size();
   const Eigen::Index nt = P + spec.fit_delay + spec.fit_offset;
   double J0 = 0.0;
@@ -146,7 +147,13 @@ ExtFitResult fit_extended(const std::vector<Record> &recs, const ExtModel &start
   OptOptions oo;
   oo.max_iter = spec.max_iter;
   oo.ftol = 1e-10;
+  oo.chi2_tol = spec.chi2_tol;
+  oo.lower = oo.upper = Eigen::VectorXd::Constant(nt, INFINITY);
+  oo.lower.head(P) = tf.lower();
+  oo.lower.tail(nt - P).setConstant(-INFINITY);
+  oo.upper.head(P) = tf.upper();
   OptResult o = minimize_trust_region(obj, th0, oo);
+  int iterations = o.iterations;
   long masked = 0;
   if (spec.robust_k > 0.0) {
     // Robust scale of the unweighted residuals at the first fit.
@@ -176,7 +183,9 @@ ExtFitResult fit_extended(const std::vector<Record> &recs, const ExtModel &start
           for (size_t j = 0; j < res[k].size(); ++j)
             if (std::fabs(res[k][j]) > spec.robust_k * sigma) weights[k][j] = 0.0;
         masked = count;
+        oo.max_iter = spec.robust_max_iter;
         o = minimize_trust_region(obj, o.theta, oo);
+        iterations += o.iterations;
       }
     }
   }
@@ -184,7 +193,7 @@ ExtFitResult fit_extended(const std::vector<Record> &recs, const ExtModel &start
   ExtFitResult out;
   out.model = unpack(o.theta);
   out.masked = masked;
-  out.iterations = o.iterations;
+  out.iterations = iterations;
   out.converged = o.converged;
   out.error = extended_error(out.model, recs, opt, &out.J, &out.J0);
   for (ParamId id : spec.free) out.names.push_back(param_name(id));

@@ -28,6 +28,8 @@ struct ExtFitSpec {
   std::array<double, P_COUNT> scale{};  // typical size of signed params starting at 0
   double delay_scale = 1e-3, offset_scale = 1.0;
   int max_iter = 60;
+  int robust_max_iter = 20;  // the refit after masking starts at the first fit's optimum
+  double chi2_tol = 0.01;  // convergence, in noise-variance units (OptOptions)
   // Outlier-robust refit: after a first fit, samples whose residual exceeds
   // robust_k robust standard deviations (1.4826 MAD) are masked and the fit
   // repeated, if they are at most robust_max_fraction of the samples (isolated

@@ -83,6 +83,9 @@ IdentifyResult identify(const std::vector<Record> &recs, const rtb_params &start
 
   OptOptions oo;
   oo.max_iter = opt.max_iter;
+  oo.chi2_tol = opt.chi2_tol;
+  oo.lower = tf.lower();
+  oo.upper = tf.upper();
   if (!opt.quiet)
     oo.progress = [&](int it, double f, double gn) {
       std::fprintf(stderr, "  iter %3d  error %.6e  |grad| %.3e\n", it, std::sqrt(2.0 * f), gn);
@@ -94,7 +97,10 @@ IdentifyResult identify(const std::vector<Record> &recs, const rtb_params &start
   };
   OptResult r = run(th0);
   // J >= 0: a fit at rounding level (f = J/J0) is the global minimum already.
-  if (opt.restarts > 0 && r.theta.size() > 1 && r.f > 1e-20) {
+  // A run that stopped at its iteration limit is still descending (a valley
+  // towards a limit model, e.g. rigid cells absorbing an inertia force):
+  // restarts around it would only continue the crawl.
+  if (opt.restarts > 0 && r.converged && r.theta.size() > 1 && r.f > 1e-20) {
     Eigen::VectorXd res;
     Eigen::MatrixXd Jt;
     obj.residuals(r.theta, res, &Jt);
@@ -107,7 +113,7 @@ IdentifyResult identify(const std::vector<Record> &recs, const rtb_params &start
       oo.ftol = 1e-6;
       for (int k = 0; k < opt.restarts; ++k) {
         const double s = (k % 2 == 0 ? 0.4 : -0.4) * (1 + k / 2);
-        OptResult q = run(r.theta + s * dir);
+        OptResult q = run((r.theta + s * dir).cwiseMax(oo.lower).cwiseMin(oo.upper));
         if (q.f < r.f * (1.0 - 1e-9)) {
           oo = full;
           OptResult polished = run(q.theta);

@@ -26,6 +26,9 @@ struct IdentifyOptions {
   // determined direction of the Gauss-Newton Hessian; the lowest misfit wins.
   // With noise the misfit has secondary minima along the Kr-C0 ridge.
   int restarts = 2;
+  // Converged when the next step would gain less than this many noise-variance
+  // units of chi^2 (optimizer.h); 0: relative tolerance 1e-10 only.
+  double chi2_tol = 0.01;
   bool quiet = true;  // progress lines on stderr when false
 };
 

@@ -25,6 +25,15 @@ struct OptOptions {
   int max_iter = 200;
   double ftol = 1e-10;   // stop when the (predicted) relative decrease of f is below
   double xtol = 1e-10;   // stop when |step| is below (theta units ~ relative)
+  // Trust region: also stop when the predicted decrease is below chi2_tol
+  // noise-variance units, the noise variance estimated as 2 f / m from the m
+  // residuals. 0.01 leaves the parameters within ~0.1 standard deviation of
+  // the exact minimum, where an ftol of 1e-10 spent dozens of iterations on
+  // decreases of 1e-9 f (alpha rattling against its floor, e.g.).
+  double chi2_tol = 0.0;
+  // Box on theta (empty or +-inf: unbounded); enforced by projection in
+  // minimize_trust_region (minimize_bfgs ignores it: the transforms clamp).
+  Eigen::VectorXd lower, upper;
   std::function<void(int iter, double f, double gnorm)> progress;  // may be empty
 };
 

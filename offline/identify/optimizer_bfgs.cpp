@@ -26,7 +26,7 @@ bool wolfe_search(const Objective &obj, const Eigen::VectorXd &x, const Eigen::V
     p.dg = std::isfinite(p.f) ? p.g.dot(d) : NAN;
     return p;
   };
-  LinePoint lo{0.0, f0, dg0, Eigen::VectorXd()}, hi;
+  LinePoint lo{0.0, f0, dg0, Eigen::VectorXd()}, hi{0.0, INFINITY, NAN, Eigen::VectorXd()};
   bool have_hi = false;
   double t = 1.0;
   for (int k = 0; k < 30; ++k) {

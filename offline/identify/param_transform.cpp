@@ -6,23 +6,35 @@
 namespace rtb {
 
 namespace {
-enum class Kind { Log, CappedLog, Alpha, Unit, Linear };
+enum class Kind { Log, CappedLog, Alpha, Linear, Ramp };
 bool is_stiffness(ParamId id) {
   return id == P_K0 || id == P_Kpa || id == P_Kr || id == P_maxwell_k;
 }
 Kind kind_of(ParamId id, double cap) {
-  if (cap > 0.0 && is_stiffness(id)) return Kind::CappedLog;
   switch (id) {
+    case P_K0:
+    case P_maxwell_k:
+    case P_viscous_c:
+    case P_mass:
+    case P_mullins:
+    case P_sat_force: return Kind::Ramp;
     case P_alpha: return Kind::Alpha;
-    case P_mullins: return Kind::Unit;
     case P_k3:
     case P_k_asym: return Kind::Linear;
-    default: return Kind::Log;
+    default: return cap > 0.0 && is_stiffness(id) ? Kind::CappedLog : Kind::Log;
   }
+}
+// Largest admissible value of a Ramp parameter.
+double ramp_upper(ParamId id, double cap) {
+  if (id == P_mullins) return 0.95;  // rtb_params_validate: mu < 1
+  if (is_stiffness(id) && cap > 0.0) return cap;
+  return INFINITY;
 }
 constexpr double kAlphaLo = RTB_ALPHA_MIN, kAlphaHi = 1.0;
 double logistic(double t) { return 1.0 / (1.0 + std::exp(-t)); }
 }  // namespace
+
+bool is_ramp(ParamId id) { return kind_of(id, 0.0) == Kind::Ramp; }
 
 std::vector<ParamId> core_params() { return {P_K0, P_Kpa, P_Kr, P_C0, P_alpha}; }
 
@@ -41,6 +53,12 @@ ParamTransform::ParamTransform(std::vector<ParamId> free_ids, const rtb_params &
   for (ParamId id : free) {
     const double v = std::fabs(param_get(start, id));
     scale[id] = v > 0.0 ? v : 1.0;
+    // A ramp step is absolute: a stiffness started near 0 must still be able
+    // to grow to the data's secant stiffness (cap / kStiffnessCapFactor) in
+    // a few steps.
+    if (kind_of(id, stiffness_cap) == Kind::Ramp && is_stiffness(id) && stiffness_cap > 0.0)
+      scale[id] = std::fmax(scale[id], stiffness_cap / kStiffnessCapFactor);
+    if (id == P_mullins) scale[id] = 0.1;
   }
 }
 
@@ -61,12 +79,10 @@ Eigen::VectorXd ParamTransform::to_theta(const rtb_params &p) const {
         th[i] = std::log(u / (1.0 - u));
         break;
       }
-      case Kind::Unit: {
-        const double u = std::fmin(std::fmax(v, 1e-9), 1 - 1e-9);
-        th[i] = std::log(u / (1.0 - u));
-        break;
-      }
       case Kind::Linear: th[i] = v / scale[id]; break;
+      case Kind::Ramp:
+        th[i] = std::fmin(std::fmax(v, 0.0), ramp_upper(id, stiffness_cap)) / scale[id];
+        break;
     }
   }
   return th;
@@ -83,8 +99,10 @@ rtb_params ParamTransform::to_params(const Eigen::VectorXd &th, const rtb_params
         v = stiffness_cap / (1.0 + std::exp(std::log(stiffness_cap) - th[i]));
         break;
       case Kind::Alpha: v = kAlphaLo + (kAlphaHi - kAlphaLo) * logistic(th[i]); break;
-      case Kind::Unit: v = logistic(th[i]); break;
       case Kind::Linear: v = th[i] * scale[id]; break;
+      case Kind::Ramp:  // clamped, so that an unbounded optimizer (BFGS) stays valid
+        v = std::fmin(std::fmax(th[i] * scale[id], 0.0), ramp_upper(id, stiffness_cap));
+        break;
     }
   }
   // Keep |k_asym| <= K0 (rtb_params_validate) by clamping.
@@ -109,15 +127,31 @@ Eigen::VectorXd ParamTransform::dp_dtheta(const Eigen::VectorXd &th) const {
         d[i] = (kAlphaHi - kAlphaLo) * s * (1.0 - s);
         break;
       }
-      case Kind::Unit: {
-        const double s = logistic(th[i]);
-        d[i] = s * (1.0 - s);
+      case Kind::Linear: d[i] = scale[id]; break;
+      case Kind::Ramp: {
+        // One-sided at the bounds: the box optimizer needs the inward slope.
+        const double v = th[i] * scale[id];
+        d[i] = (v < 0.0 || v > ramp_upper(id, stiffness_cap)) ? 0.0 : scale[id];
         break;
       }
-      case Kind::Linear: d[i] = scale[id]; break;
     }
   }
   return d;
+}
+
+Eigen::VectorXd ParamTransform::lower() const {
+  Eigen::VectorXd lo = Eigen::VectorXd::Constant((Eigen::Index)free.size(), -INFINITY);
+  for (size_t i = 0; i < free.size(); ++i)
+    if (kind_of(free[i], stiffness_cap) == Kind::Ramp) lo[(Eigen::Index)i] = 0.0;
+  return lo;
+}
+
+Eigen::VectorXd ParamTransform::upper() const {
+  Eigen::VectorXd hi = Eigen::VectorXd::Constant((Eigen::Index)free.size(), INFINITY);
+  for (size_t i = 0; i < free.size(); ++i)
+    if (kind_of(free[i], stiffness_cap) == Kind::Ramp)
+      hi[(Eigen::Index)i] = ramp_upper(free[i], stiffness_cap) / scale[free[i]];
+  return hi;
 }
 
 }  // namespace rtb

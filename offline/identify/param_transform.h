@@ -1,10 +1,19 @@
 // param_transform.h -- unconstrained coordinates for the optimizers.
 //
-// Stiffnesses and coefficients that must stay positive (K0, Kpa, Kr, C0,
-// maxwell_k, maxwell_tau, viscous_c, mass, backlash) are optimized as log p;
-// alpha as a logistic image of (RTB_ALPHA_MIN, 1); mullins of (0, 1); signed
-// parameters (k3, k_asym) scaled by a reference value. Log coordinates also
-// make the problem scale-free: a unit step is a relative change.
+// Parameters that must stay strictly positive (Kpa, Kr, C0, maxwell_tau,
+// backlash, sat_disp) are optimized as log p; alpha as a logistic image of
+// (RTB_ALPHA_MIN, 1); signed parameters (k3, k_asym) scaled by a reference
+// value. Log coordinates make the problem scale-free: a unit step is a
+// relative change.
+//
+// Parameters for which 0 is an admissible and common optimum -- K0, and the
+// sizes of the extensions (maxwell_k, viscous_c, mass, mullins, sat_force),
+// which a fit on data without that effect drives to 0 -- are optimized
+// linearly, p = scale theta, inside the box [0, upper] that the trust-region
+// optimizer enforces by projection. In log coordinates that optimum is
+// infinitely far away: Gauss-Newton crawled towards it a few percent per
+// iteration (60 iterations for a viscous term on delay data, each costing a
+// tangent sweep), where the box reaches it in one projected step.
 //
 // Stiffness ceiling: with a finite `stiffness_cap` the stiffnesses (K0, Kpa,
 // Kr, maxwell_k) map as p = cap e^t / (cap + e^t): log-like far below the cap,
@@ -36,7 +45,13 @@ struct ParamTransform {
   rtb_params to_params(const Eigen::VectorXd &theta, const rtb_params &base) const;
   // dp_i / dtheta_i at theta (diagonal of the Jacobian).
   Eigen::VectorXd dp_dtheta(const Eigen::VectorXd &theta) const;
+  // The box on theta (-inf/+inf where unbounded), for OptOptions.
+  Eigen::VectorXd lower() const;
+  Eigen::VectorXd upper() const;
 };
+
+// Optimized linearly in a box with 0 as its lower bound (see above).
+bool is_ramp(ParamId id);
 
 // The stiffness ceiling for records: kStiffnessCapFactor x max|F| / max|x|.
 constexpr double kStiffnessCapFactor = 1e3;

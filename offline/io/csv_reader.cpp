@@ -5,6 +5,11 @@
 // surrounding blanks ignored, extra columns ignored), then numeric rows with
 // as many fields as the header. CRLF line ends and trailing blank lines are
 // accepted. Every error names the file and line (and the column).
+//
+// Test rigs name their channels in many ways; a column is recognized by its
+// name with a unit suffix removed ("force [N]", "time (s)", "disp_mm"):
+//   time: time, t;  displacement: displacement, disp, x, u, stroke, position;
+//   force: force, f, load.
 #include <cctype>
 #include <charconv>
 #include <cmath>
@@ -59,6 +64,29 @@ void split(std::string_view line, std::vector<std::string_view> &out) {
     out.push_back(line.substr(start, comma - start));
     start = comma + 1;
   }
+}
+
+// Which of time (0), displacement (1), force (2) a header cell names, or -1.
+int column_role(std::string name) {
+  // A unit in brackets or parentheses: "force [kN]", "time (s)".
+  const size_t br = name.find_first_of("[(");
+  if (br != std::string::npos) name = name.substr(0, br);
+  name = std::string(trim(name));
+  static const std::vector<std::string> kAliases[3] = {
+      {"time", "t"},
+      {"displacement", "disp", "x", "u", "stroke", "position"},
+      {"force", "f", "load"}};
+  auto match = [&](const std::string &n) {
+    for (int k = 0; k < 3; ++k)
+      for (const std::string &a : kAliases[k])
+        if (n == a) return k;
+    return -1;
+  };
+  const int whole = match(name);
+  if (whole >= 0) return whole;
+  // A unit after an underscore or a blank: "time_s", "force_kN", "disp mm".
+  const size_t sep = name.find_first_of("_ ");
+  return sep == std::string::npos ? -1 : match(name.substr(0, sep));
 }
 
 enum class NumStatus { ok, not_a_number, out_of_range };
@@ -138,10 +166,12 @@ Record parse_record_csv(const std::string &bytes, const std::string &path,
         const std::string name = lower(clean_cell(fields[i]));
         double dummy;
         if (parse_double(fields[i], dummy) != NumStatus::ok) all_numeric = false;
-        for (int k = 0; k < 3; ++k) {
-          if (name != kNames[k]) continue;
+        const int k = column_role(name);
+        if (k >= 0) {
           if (col[k] >= 0)
-            ctx.fail(line_no, std::string("column '") + kNames[k] + "' appears twice in the header");
+            ctx.fail(line_no, std::string("column '") + kNames[k] + "' appears twice in the header (" +
+                                  quoted(header_names[(size_t)col[k]]) + " and " +
+                                  quoted(clean_cell(fields[i])) + ")");
           col[k] = (int)i;
         }
         header_names.push_back(std::string(clean_cell(fields[i])));

@@ -96,7 +96,7 @@ StepView Trajectory::step(const rtb_params &p, const DriveGrid &g, size_t i) con
   }
   const double *q = b + 4 + cells;
   for (int k = 0; k < n_stages; ++k, q += 1 + 3 * cells)
-    v.st[k] = StageView{q[0], q + 1, q + 1 + cells, q + 1 + 2 * cells};
+    v.st[k] = StageView{q[0], q + 1, q + 1 + cells, q + 1 + 2 * cells, nullptr};
   return v;
 }
 

@@ -21,9 +21,19 @@ struct DriveGrid {
 DriveGrid make_drive_grid(const Record &rec, const SimOptions &opt);
 
 // One implicit stage as the linearization sees it (views into Trajectory).
+// Dashpot partials of one converged stage (step_linearization.cpp fills it):
+// the same for every tangent direction, so a Jacobian sweep computes them
+// once per step instead of once per column.
+struct StageLin {
+  double D[RTB_MAX_CELLS];       // dv/df
+  double dv_dC0[RTB_MAX_CELLS];  // dv/dC0 at fixed f
+  double dv_dalpha[RTB_MAX_CELLS];
+};
+
 struct StageView {
   double h;
   const double *f, *v, *y;  // converged dashpot forces, velocities, stage DOFs
+  const StageLin *lin = nullptr;  // precomputed partials, or nullptr
 };
 
 // One step as the linearization sees it: the memory before and after, and
