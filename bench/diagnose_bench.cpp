@@ -1,6 +1,6 @@
 // diagnose_bench.cpp -- cost of `rtb diagnose` on the issue #4 set-up: five
 // 10 s records at 1 kHz (three fit records, two held out), N = 15, 0.5%
-// noise, one hidden effect; all ten candidates screened, four fitted
+// noise, one hidden effect; all ten candidates screened, five fitted
 // jointly, 2 threads. Target: under 30 s per diagnosis on this machine.
 //   BM_Diagnose/<k>   one full diagnosis of kEffects[k] hidden (none and the
 //                     whole vocabulary); counter named_ok = 1 when it was named

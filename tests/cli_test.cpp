@@ -142,6 +142,12 @@ TEST_F(CliTest, UnknownSubcommandOrOptionExits2) {
   EXPECT_NE(r.err.find("missing option --input"), std::string::npos) << r.err;
   r = rtb("simulate --params");  // option without value
   EXPECT_EQ(r.code, 2);
+  // Out-of-range value: refused before anything is printed or written.
+  r = rtb("demo --duration 1 --out-dir " + shell_quote(file("demo")));
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("--duration"), std::string::npos) << r.err;
+  EXPECT_TRUE(r.out.empty()) << r.out;
+  EXPECT_FALSE(fs::exists(file("demo")));
 }
 
 TEST_F(CliTest, InfoPrintsLibraryFacts) {

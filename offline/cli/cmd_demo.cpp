@@ -57,16 +57,21 @@ int run_demo(int argc, char **argv) {
       "with a hidden effect, identified and diagnosed without being told the effect.",
       {{"effect", "NAME", "hidden effect (default backlash; any vocabulary word or none)"},
        {"seed", "N", "random parameters seed (default 3)"},
+       {"duration", "S", "length of each generated record in seconds (default 8)"},
        {"out-dir", "DIR", "where the records, report and header go (default build/demo)"}}};
   Args a;
   if (parse_or_help(spec, argc, argv, a)) return kExitOk;
   const std::string effect = a.get("effect", "backlash");
   const std::string dir = a.get("out-dir", "build/demo");
+  const double duration = a.get_double("duration", 8.0);
+  if (!(duration >= 2.0 && duration <= 600.0))
+    throw InputError("--duration must be between 2 and 600 s");
+
   ::mkdir(dir.c_str(), 0755);
   element_table();
 
   std::printf("== 2. Generated test-rig records, 0.5%% force noise, one hidden effect\n");
-  const Scenario sc = hidden_effect_scenario(effect, (unsigned)a.get_int("seed", 3), 0.005, 8.0);
+  const Scenario sc = hidden_effect_scenario(effect, (unsigned)a.get_int("seed", 3), 0.005, duration);
   std::vector<Record> fit, hold;
   for (const std::vector<Record> *set : {&sc.fit, &sc.holdout})
     for (const Record &r : *set) {

@@ -148,9 +148,10 @@ ExtFitResult fit_extended(const std::vector<Record> &recs, const ExtModel &start
   oo.max_iter = spec.max_iter;
   oo.ftol = 1e-10;
   oo.chi2_tol = spec.chi2_tol;
-  oo.lower = oo.upper = Eigen::VectorXd::Constant(nt, INFINITY);
+  // The transform's box on the model parameters; delay and offset are free.
+  oo.lower = Eigen::VectorXd::Constant(nt, -INFINITY);
+  oo.upper = Eigen::VectorXd::Constant(nt, INFINITY);
   oo.lower.head(P) = tf.lower();
-  oo.lower.tail(nt - P).setConstant(-INFINITY);
   oo.upper.head(P) = tf.upper();
   OptResult o = minimize_trust_region(obj, th0, oo);
   int iterations = o.iterations;

@@ -41,6 +41,10 @@ OptResult minimize_trust_region(const Objective &obj, const Eigen::VectorXd &the
   double f = 0.5 * r.squaredNorm();
   double lambda = 1e-3;
   int it = 0, stalled = 0;
+  // chi2_tol noise-variance units in f, the variance estimated as 2 f / m.
+  auto noise_tol = [&](double f_now, const Eigen::VectorXd &res_now) {
+    return opt.chi2_tol * f_now / std::fmax(1.0, (double)res_now.size());
+  };
   for (; it < opt.max_iter; ++it) {
     const Eigen::VectorXd g = J.transpose() * r;
     const Eigen::MatrixXd A = J.transpose() * J;
@@ -63,10 +67,9 @@ OptResult minimize_trust_region(const Objective &obj, const Eigen::VectorXd &the
       Eigen::MatrixXd M = Ar;
       M.diagonal() += 1e-12 * S;
       const double gn_pred = 0.5 * gr.dot(M.ldlt().solve(gr));
-      const double f_noise = opt.chi2_tol * f / std::fmax(1.0, (double)r.size());
-      if (gn_pred <= std::fmax(opt.ftol * f, f_noise) || f < 1e-30) {
+      if (gn_pred <= std::fmax(opt.ftol * f, noise_tol(f, r)) || f < 1e-30) {
         res.converged = true;
-        res.message = "Gauss-Newton predicted decrease below ftol";
+        res.message = "Gauss-Newton predicted decrease below ftol / chi2_tol";
         break;
       }
     }
@@ -109,9 +112,7 @@ OptResult minimize_trust_region(const Objective &obj, const Eigen::VectorXd &the
     // noise units. The undamped Gauss-Newton prediction can stay large where
     // the model is poor (alpha at its floor makes the dashpot a near-friction
     // element), and damped steps then crawl for hundreds of iterations.
-    stalled = opt.chi2_tol > 0.0 && gained < opt.chi2_tol * f / std::fmax(1.0, (double)r.size())
-                  ? stalled + 1
-                  : 0;
+    stalled = opt.chi2_tol > 0.0 && gained < noise_tol(f, r) ? stalled + 1 : 0;
     if (stalled >= 3) {
       res.converged = true;
       res.message = "decrease below chi2_tol noise units for 3 steps";
