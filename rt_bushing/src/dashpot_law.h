@@ -15,6 +15,7 @@
 #include <float.h>
 #include <math.h>
 
+
 /* psi(v), eq. (1). */
 static inline double rtb_law_force(double v, double C0, double alpha) {
   if (v == 0.0) return 0.0;
@@ -126,22 +127,38 @@ static inline double rtb_slaw_force(double v, double C0, double alpha, double s,
  * psi_s evaluations on average. Bounded: at most RTB_SLAW_INV_ITERS
  * evaluations. Returns +-inf (a rejected trial point) only if vu overflows. */
 #define RTB_SLAW_INV_ITERS 80
-static inline double rtb_slaw_velocity(double f, double C0, double alpha, double s,
-                                       double guess) {
+/* The inverse with an explicit evaluation cap: at most max_evals (>= 1)
+ * psi_s evaluations; *evals receives the number used (>= 1 whenever f != 0,
+ * so a caller's work count stays honest) and *dvdf (may be NULL) 1/psi_s'
+ * at the last evaluated point (capped at DBL_MAX), which differs from the
+ * returned v by at most the final Newton correction (rounding level when
+ * converged). When the cap ends the iteration the best bracketed iterate is
+ * returned. */
+static inline double rtb_slaw_velocity_n(double f, double C0, double alpha, double s,
+                                         double guess, int max_evals, int *evals,
+                                         double *dvdf) {
+  *evals = 1;
+  if (dvdf) *dvdf = 0.0;
   if (f == 0.0) return 0.0;
   const double m = fabs(f);
   const double vu = rtb_law_velocity(m, C0, alpha);
   if (!(vu <= DBL_MAX)) return f > 0.0 ? INFINITY : -INFINITY;
-  if (s * vu >= RTB_SLAW_SHARP) return f > 0.0 ? vu : -vu; /* psi_s(vu) == f to rounding */
+  if (s * vu >= RTB_SLAW_SHARP) { /* psi_s(vu) == f to rounding */
+    if (dvdf) *dvdf = rtb_law_dvdf(m, vu, alpha);
+    return f > 0.0 ? vu : -vu;
+  }
   double lo = vu - 2.0 * 0.69314718055994530942 / s;
   if (!(lo > 0.0)) lo = 0.0;
   double hi = 4.0 * (vu + 2.0 / s);
   if (!(hi <= DBL_MAX)) hi = DBL_MAX;
   const double g = f > 0.0 ? guess : -guess;
   double v = (g > lo && g < hi) ? g : (vu < lo ? lo : (vu > hi ? hi : vu));
-  for (int it = 0; it < RTB_SLAW_INV_ITERS; ++it) {
+  int it = 0;
+  while (it < max_evals) {
     double d;
     const double r = rtb_slaw_force(v, C0, alpha, s, &d) - m;
+    ++it;
+    if (dvdf) { const double D = 1.0 / d; *dvdf = D <= DBL_MAX ? D : DBL_MAX; }
     if (r == 0.0) break;
     if (r > 0.0) hi = v; else lo = v;
     double vn = v - r / d;
@@ -159,7 +176,14 @@ static inline double rtb_slaw_velocity(double f, double C0, double alpha, double
     v = vn;
     if (hi - lo <= 2.0 * DBL_EPSILON * hi) break;
   }
+  *evals = it > 0 ? it : 1;
   return f > 0.0 ? v : -v;
+}
+
+static inline double rtb_slaw_velocity(double f, double C0, double alpha, double s,
+                                       double guess) {
+  int evals;
+  return rtb_slaw_velocity_n(f, C0, alpha, s, guess, RTB_SLAW_INV_ITERS, &evals, 0);
 }
 
 /* ------------------------------------------------------------------------
@@ -198,6 +222,72 @@ static inline double rtb_dashpot_dv_dC0(double f, double v, double C0, double al
 static inline double rtb_dashpot_dv_dalpha(double f, double v, double C0, double alpha, double s) {
   if (!(s > 0.0)) return rtb_law_dv_dalpha(f, v, C0, alpha);
   return -f * rtb_slaw_log_abs(v, s) * rtb_dashpot_dvdf(f, v, C0, alpha, s);
+}
+
+/* ------------------------------------------------------------------------
+ * The stage solver's law evaluations (issue #11): constants hoisted once per
+ * stage, one log and one exp per unsmoothed evaluation, and the pair's
+ * slope D = dv/df = phi'(f) returned with it (one division), so the Newton
+ * matrix needs no further law call. Results equal the functions above to
+ * rounding (phi uses the reciprocal of C0 instead of a division by it).
+ */
+typedef struct rtb_law {
+  double C0, alpha, s;      /* s: eq. (14) smoothing, 0 = exact eq. (1) */
+  double inv_C0, inv_alpha;
+} rtb_law;
+
+static inline void rtb_law_init(rtb_law *L, double C0, double alpha, double s) {
+  L->C0 = C0;
+  L->alpha = alpha;
+  L->s = s;
+  L->inv_C0 = 1.0 / C0;
+  L->inv_alpha = 1.0 / alpha;
+}
+
+/* f = psi(v) and *D = phi'(f) at the pair (0 at v = 0). One psi evaluation. */
+static inline double rtb_law_eval_v(const rtb_law *L, double v, double *D) {
+  if (L->s > 0.0) {
+    double d;
+    const double f = rtb_slaw_force(v, L->C0, L->alpha, L->s, &d);
+    const double Dv = 1.0 / d;
+    *D = Dv <= DBL_MAX ? Dv : DBL_MAX;
+    return f;
+  }
+  const double a = fabs(v);
+  if (a == 0.0) { *D = 0.0; return 0.0; }
+  const double m = L->C0 * exp(L->alpha * log(a));  /* eq. (1) */
+  *D = m > 0.0 ? a / (L->alpha * m) : 0.0;          /* phi' = v / (alpha f) */
+  return v > 0.0 ? m : -m;
+}
+
+/* v = phi(f) of eq. (1) (no smoothing) and *D = phi'(f). */
+static inline double rtb_law_eval_pow_f(const rtb_law *L, double f, double *D) {
+  const double a = fabs(f);
+  if (a == 0.0) { *D = 0.0; return 0.0; }
+  const double m = exp(log(a * L->inv_C0) * L->inv_alpha); /* inverse of eq. (1) */
+  *D = m > 0.0 ? m / (L->alpha * a) : 0.0;
+  return f > 0.0 ? m : -m;
+}
+
+/* v = phi(f) and *D = phi'(f). `guess` warm-starts the smoothed inverse;
+ * *cap: in, the most psi_s evaluations it may use (>= 1); out, the count
+ * used (1 for eq. (1)). */
+static inline double rtb_law_eval_f(const rtb_law *L, double f, double guess, double *D,
+                                    int *cap) {
+  if (L->s > 0.0) {
+    const int max_evals = *cap < 1 ? 1 : (*cap < RTB_SLAW_INV_ITERS ? *cap : RTB_SLAW_INV_ITERS);
+    return rtb_slaw_velocity_n(f, L->C0, L->alpha, L->s, guess, max_evals, cap, D);
+  }
+  *cap = 1;
+  return rtb_law_eval_pow_f(L, f, D);
+}
+
+/* phi'(f) of a pair (f, v) already on the curve; *evals: law evaluations
+ * this took (0 for eq. (1), which needs only a division). */
+static inline double rtb_law_dvdf_pair(const rtb_law *L, double f, double v, int *evals) {
+  if (!(L->s > 0.0)) { *evals = 0; return rtb_law_dvdf(f, v, L->alpha); }
+  *evals = 1;
+  return rtb_dashpot_dvdf(f, v, L->C0, L->alpha, L->s);
 }
 
 #endif

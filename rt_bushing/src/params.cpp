@@ -65,7 +65,7 @@ extern "C" rtb_status rtb_params_validate(const rtb_params *p) {
 
 extern "C" void rtb_settings_default(rtb_settings *s) {
   if (!s) return;
-  s->tol = 1e-12;
+  s->tol = 1e-10;
   s->max_iter = 40;
   s->max_backtrack = 30;
 }

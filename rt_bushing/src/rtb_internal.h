@@ -23,25 +23,37 @@ typedef struct rtb_stage {
   double f[RTB_MAX_CELLS];     /* converged dashpot forces [force] */
   double v[RTB_MAX_CELLS];     /* converged cell velocities [length/time] */
   double y[RTB_MAX_CELLS];     /* stage cell DOFs [length] */
+  double D[RTB_MAX_CELLS];     /* phi'(f) at the returned pair [length/(force time)] */
   int iterations;
   int converged;
 } rtb_stage;
 
 /* Solve one stage with Newton's method (per-DOF variable switching and a line
- * search on the convex dual energy). v_guess warm-starts the velocities.
- * Returns RTB_OK, RTB_NOT_CONVERGED or RTB_ERR_OVERFLOW. */
-rtb_status rtb_stage_solve(const rtb_params *p, const rtb_settings *set,
-                           const double *v_guess, rtb_stage *st);
+ * search on the residual norm). (f0, v0), both or neither NULL: a start pair
+ * on the dashpot curve (previous solution); v_guess (may be NULL) the
+ * fallback start. *budget: law evaluations left in this step, decremented
+ * (stage_newton.cpp). Returns RTB_OK, RTB_NOT_CONVERGED or RTB_ERR_OVERFLOW. */
+rtb_status rtb_stage_solve(const rtb_params *p, const rtb_settings *set, const double *f0,
+                           const double *v0, const double *v_guess, rtb_stage *st,
+                           int *budget);
 
 /* SDIRK2 coefficient gamma = 1 - 1/sqrt(2) (Alexander 1977). */
 #define RTB_SDIRK_GAMMA 0.29289321881345247560
 int rtb_integrator_stages(const rtb_params *p);
 
 /* Advance the cell chain from state s (y, xb) to xb_new over dt, storing the
- * stages (st[0..stages-1]). The new DOFs are st[stages-1].y. */
+ * stages (st[0..stages-1]). The new DOFs are st[stages-1].y. *budget: law
+ * evaluations left in this step (decremented). */
 rtb_status rtb_chain_advance(const rtb_params *p, const rtb_settings *set,
                              const rtb_state *s, double xb_new, double dt,
-                             rtb_stage st[2]);
+                             rtb_stage st[2], int *budget);
+/* The same, with the first stage started from the pair (f1, v1) (both or
+ * neither NULL) instead of the last step's end: another solution of the
+ * first stage for a nearby xb_new. f1/v1 may alias st[0].f/st[0].v. */
+rtb_status rtb_chain_advance_from(const rtb_params *p, const rtb_settings *set,
+                                  const rtb_state *s, double xb_new, double dt,
+                                  const double *f1, const double *v1, rtb_stage st[2],
+                                  int *budget);
 
 /* Rate-independent STS step (section 3.1): exact backward-Euler return map of
  * the friction chain by a primal-dual active-set method. */

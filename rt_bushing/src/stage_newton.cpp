@@ -16,14 +16,25 @@
  * iteration when alpha is small (near-friction dashpots), where plain
  * Newton in f needs O(1/alpha) iterations.
  *
+ * Start (issue #11): the caller passes a pair (f0, v0) that lies on the
+ * dashpot curve to within the previous solve's tolerance -- the previous step's
+ * end for the first stage, the first stage's solution for the second -- with
+ * its D0. Its residual costs no law evaluation, so the first Newton step (a
+ * linearly implicit predictor) is free of transcendentals; the law is then
+ * evaluated once per iteration. If that start is unusable (non-finite, or the
+ * first line search fails because the pair was off the curve) the solve
+ * restarts from the law evaluated at v_guess, or from rest.
+ *
  * With the eq. (14) smoothing (s > 0) the same solver runs on psi_s: it is
  * strictly increasing, so the dual energy stays strictly convex and the
  * variable switch is unchanged; force-updated DOFs invert psi_s by the
  * bounded safeguarded scalar Newton of dashpot_law.h.
  *
- * Work per stage is bounded: at most max_iter iterations, each with one
- * tridiagonal solve and at most max_backtrack+1 residual evaluations (with
- * smoothing, times at most RTB_SLAW_INV_ITERS per force-updated DOF).
+ * Work is bounded by the step's budget of law evaluations (*budget,
+ * rt_bushing.h RTB_STEP_WORK): a sweep starts only if the budget still holds
+ * one evaluation per cell, and every evaluation (each psi_s evaluation of the
+ * smoothed inverse included) is taken from it. When it runs out the last
+ * accepted iterate is kept and RTB_NOT_CONVERGED returned.
  */
 #include <float.h>
 #include <math.h>
@@ -37,80 +48,168 @@ namespace {
 
 struct Chain {
   int n;
-  double Kpa, Kr, C0, alpha, h;
-  double s;  /* eq. (14) smoothing [1/velocity], 0 = exact eq. (1) */
+  double Kpa, Kr, h;
+  double hKr, hK0;   /* h Kr and h (Kpa + Kr): the Newton matrix's entries */
+  rtb_law law;       /* eq. (1) / (14) with its constants hoisted */
 };
 
 /* H = f + h K v - r; returns the max-norm (and the squared 2-norm in *sq),
  * or +inf if anything is non-finite. */
 double residual(const Chain &ch, const double *f, const double *v, const double *r,
                 double *H, double *sq) {
-  double Kv[RTB_MAX_CELLS];
-  rtb_chain_apply(ch.n, ch.Kpa, ch.Kr, v, Kv);
+  const int n = ch.n;
+  const double hKr = ch.hKr, h2Kr = 2.0 * ch.hKr;
+  /* Row 0 (Kpa + Kr on the diagonal) and row n-1 (no right neighbour) are
+   * peeled so the interior loop has no branch (it vectorises). */
+  H[0] = f[0] + ch.hK0 * v[0] - r[0];
+  if (n > 1) H[0] -= hKr * v[1];
+  for (int k = 1; k < n - 1; ++k) H[k] = f[k] + h2Kr * v[k] - hKr * (v[k - 1] + v[k + 1]) - r[k];
+  if (n > 1) H[n - 1] = f[n - 1] + h2Kr * v[n - 1] - hKr * v[n - 2] - r[n - 1];
   double nrm = 0.0, s2 = 0.0;
-  for (int k = 0; k < ch.n; ++k) {
-    H[k] = f[k] + ch.h * Kv[k] - r[k];
+  for (int k = 0; k < n; ++k) {
     const double a = fabs(H[k]);
-    if (!(a <= DBL_MAX)) return INFINITY;
     nrm = a > nrm ? a : nrm;
     s2 += a * a;
   }
+  if (!(nrm <= DBL_MAX) || s2 != s2) return INFINITY; /* inf or NaN somewhere */
   *sq = s2;
   return nrm;
+}
+
+/* Evaluate the law at v (steep DOFs) or f (the others) for all cells; D =
+ * dv/df at the new pair, and the next iteration's choice of update variable
+ * (steep: h K_kk D > 1). Takes the evaluations from *budget; returns max |f|. */
+double law_sweep(const Chain &ch, bool *steep, double *f, double *v, double *D, int *budget) {
+  const int n = ch.n;
+  double fmax_abs = 0.0;
+  if (!(ch.law.s > 0.0)) { /* eq. (1): one evaluation per cell */
+    for (int k = 0; k < n; ++k) {
+      if (steep[k]) f[k] = rtb_law_eval_v(&ch.law, v[k], &D[k]);
+      else v[k] = rtb_law_eval_pow_f(&ch.law, f[k], &D[k]);
+    }
+    *budget -= n;
+  } else {
+    for (int k = 0; k < n; ++k) {
+      if (steep[k]) {
+        f[k] = rtb_law_eval_v(&ch.law, v[k], &D[k]);
+        *budget -= 1;
+      } else {
+        /* v[k] holds the tangent prediction: the smoothed inverse's warm
+         * start. Leave one evaluation for each cell still to come. */
+        int cap = *budget - (n - 1 - k);
+        v[k] = rtb_law_eval_f(&ch.law, f[k], v[k], &D[k], &cap);
+        *budget -= cap;
+      }
+    }
+  }
+  for (int k = 0; k < n; ++k) {
+    steep[k] = (k == 0 ? ch.hK0 : 2.0 * ch.hKr) * D[k] > 1.0;
+    const double a = fabs(f[k]);
+    fmax_abs = a > fmax_abs ? a : fmax_abs;
+  }
+  return fmax_abs;
+}
+
+/* Newton step: (I + h K D) dl = -H, Thomas algorithm with one reciprocal per
+ * row. Column k of h K D carries D[k]. Returns 0, or -1 on a zero pivot. */
+int newton_solve(const Chain &ch, const double *D, const double *H, double *dl) {
+  const int n = ch.n;
+  double w[RTB_MAX_CELLS];
+  double piv = 1.0 + ch.hK0 * D[0];
+  if (!(piv != 0.0)) return -1;
+  double inv = 1.0 / piv;
+  dl[0] = -H[0] * inv;
+  for (int k = 1; k < n; ++k) {
+    const double lo = -ch.hKr * D[k - 1];
+    w[k] = -ch.hKr * D[k] * inv;       /* up[k-1] / piv[k-1] */
+    piv = 1.0 + 2.0 * ch.hKr * D[k] - lo * w[k];
+    if (!(piv != 0.0)) return -1;
+    inv = 1.0 / piv;
+    dl[k] = (-H[k] - lo * dl[k - 1]) * inv;
+  }
+  for (int k = n - 2; k >= 0; --k) dl[k] -= w[k + 1] * dl[k + 1];
+  return 0;
+}
+
+
+/* Pair (f, v), slopes D, residual H and the update choice of one iterate. */
+struct Iterate {
+  double f[RTB_MAX_CELLS], v[RTB_MAX_CELLS], D[RTB_MAX_CELLS], H[RTB_MAX_CELLS];
+  bool steep[RTB_MAX_CELLS];
+  double fmax_abs, hnorm, h2;  /* max |f|, max |H|, |H|_2^2 */
+};
+
+/* The law at v = v_guess (rest if NULL or unusable): a start on the curve. */
+void evaluated_start(const Chain &ch, const double *v_guess, const double *r, Iterate *x,
+                     int *budget) {
+  for (int attempt = v_guess ? 0 : 1; attempt < 2; ++attempt) {
+    for (int k = 0; k < ch.n; ++k) {
+      x->v[k] = attempt == 0 ? v_guess[k] : 0.0;
+      x->steep[k] = true;
+    }
+    x->fmax_abs = law_sweep(ch, x->steep, x->f, x->v, x->D, budget);
+    x->hnorm = residual(ch, x->f, x->v, r, x->H, &x->h2);
+    if (x->hnorm <= DBL_MAX) return;
+  }
 }
 
 }  // namespace
 
 extern "C" rtb_status rtb_stage_solve(const rtb_params *p, const rtb_settings *set,
-                                      const double *v_guess, rtb_stage *st) {
-  const Chain ch = {p->cells, p->Kpa, p->Kr, p->C0, p->alpha, st->h, p->smoothing};
+                                      const double *f0, const double *v0, const double *v_guess,
+                                      rtb_stage *st, int *budget) {
+  Chain ch;
+  ch.n = p->cells;
+  ch.Kpa = p->Kpa;
+  ch.Kr = p->Kr;
+  ch.h = st->h;
+  ch.hKr = st->h * p->Kr;
+  ch.hK0 = st->h * (p->Kpa + p->Kr);
+  rtb_law_init(&ch.law, p->C0, p->alpha, p->smoothing);
   const int n = ch.n;
   if (n < 1 || n > RTB_MAX_CELLS) return RTB_ERR_STATE;
-  double r[RTB_MAX_CELLS], H[RTB_MAX_CELLS], D[RTB_MAX_CELLS], dl[RTB_MAX_CELLS];
-  double lo[RTB_MAX_CELLS], di[RTB_MAX_CELLS], up[RTB_MAX_CELLS], work[RTB_MAX_CELLS];
-  double ft[RTB_MAX_CELLS], vt[RTB_MAX_CELLS], Ht[RTB_MAX_CELLS];
-  bool steep[RTB_MAX_CELLS];
+  double r[RTB_MAX_CELLS], dl[RTB_MAX_CELLS];
+  Iterate bufs[2];
+  Iterate *x = &bufs[0], *trial = &bufs[1];
 
   /* r = b - K c: the dashpot forces if no cell moved during the stage. */
   rtb_chain_apply(n, ch.Kpa, ch.Kr, st->c, r);
   double rnorm = 0.0;
   for (int k = 0; k < n; ++k) {
     r[k] = (k == 0 ? st->b1 : 0.0) - r[k];
-    if (fabs(r[k]) > rnorm) rnorm = fabs(r[k]);
+    rnorm = fabs(r[k]) > rnorm ? fabs(r[k]) : rnorm;
   }
 
-  double *f = st->f, *v = st->v;
-  for (int k = 0; k < n; ++k) {
-    v[k] = v_guess ? v_guess[k] : 0.0;
-    f[k] = rtb_dashpot_force(v[k], ch.C0, ch.alpha, ch.s);
+  /* Start: the free pair (f0, v0) if given and finite, else the law at v_guess. */
+  bool free_start = f0 && v0;
+  if (free_start) {
+    x->fmax_abs = 0.0;
+    for (int k = 0; k < n; ++k) {
+      int evals;
+      x->f[k] = f0[k];
+      x->v[k] = v0[k];
+      x->D[k] = rtb_law_dvdf_pair(&ch.law, f0[k], v0[k], &evals);
+      *budget -= evals;
+      x->steep[k] = (k == 0 ? ch.hK0 : 2.0 * ch.hKr) * x->D[k] > 1.0;
+      x->fmax_abs = fabs(f0[k]) > x->fmax_abs ? fabs(f0[k]) : x->fmax_abs;
+    }
+    x->hnorm = residual(ch, x->f, x->v, r, x->H, &x->h2);
+    free_start = x->hnorm <= DBL_MAX;
   }
-  double h2;
-  double hnorm = residual(ch, f, v, r, H, &h2);
-  if (!(hnorm <= DBL_MAX)) { /* warm start unusable: start from rest */
-    for (int k = 0; k < n; ++k) f[k] = v[k] = 0.0;
-    hnorm = residual(ch, f, v, r, H, &h2);
+  if (!free_start) evaluated_start(ch, v_guess, r, x, budget);
+  if (!(x->hnorm <= DBL_MAX)) { /* from rest: f = v = 0 is finite whatever r is */
+    for (int k = 0; k < n; ++k) x->f[k] = x->v[k] = x->D[k] = 0.0, x->steep[k] = false;
+    x->fmax_abs = 0.0;
+    x->hnorm = residual(ch, x->f, x->v, r, x->H, &x->h2);
   }
 
   st->converged = 0;
   int it = 0;
   for (;; ++it) {
-    double scale = rnorm;
-    for (int k = 0; k < n; ++k) scale = fmax(scale, fabs(f[k]));
-    if (hnorm <= set->tol * scale || hnorm <= DBL_MIN) { st->converged = 1; break; }
-    if (it >= set->max_iter) break;
-
-    /* Newton step: (I + h K D) df = -H. Column k of h K D carries D[k], so
-     * every D must be known before the matrix is assembled. */
-    for (int k = 0; k < n; ++k) D[k] = rtb_dashpot_dvdf(f[k], v[k], ch.C0, ch.alpha, ch.s);
-    for (int k = 0; k < n; ++k) {
-      const double hKD = ch.h * rtb_chain_diag(k, ch.Kpa, ch.Kr) * D[k];
-      steep[k] = hKD > 1.0;
-      di[k] = 1.0 + hKD;
-      lo[k] = k > 0 ? -ch.h * ch.Kr * D[k - 1] : 0.0;
-      up[k] = k + 1 < n ? -ch.h * ch.Kr * D[k + 1] : 0.0;
-      dl[k] = -H[k];
-    }
-    if (rtb_tridiag_solve(n, lo, di, up, dl, work) != 0) break;
+    const double scale = x->fmax_abs > rnorm ? x->fmax_abs : rnorm;
+    if (x->hnorm <= set->tol * scale || x->hnorm <= DBL_MIN) { st->converged = 1; break; }
+    if (it >= set->max_iter || *budget < n) break;
+    if (newton_solve(ch, x->D, x->H, dl) != 0) break;
 
     /* Line search on the merit 1/2 |H|_2^2. Both update rules leave the
      * pair on the dashpot curve with df/dt = df at t = 0, so dH/dt = J df = -H
@@ -118,31 +217,40 @@ extern "C" rtb_status rtb_stage_solve(const rtb_params *p, const rtb_settings *s
      * (A single merit: alternating between two merits can cycle.) */
     double t = 1.0;
     bool accepted = false;
-    for (int bt = 0; bt <= set->max_backtrack; ++bt, t *= 0.5) {
+    for (int bt = 0; bt <= set->max_backtrack && *budget >= n; ++bt, t *= 0.5) {
       for (int k = 0; k < n; ++k) {
-        if (steep[k]) {
-          vt[k] = v[k] + t * D[k] * dl[k];
-          ft[k] = rtb_dashpot_force(vt[k], ch.C0, ch.alpha, ch.s);
-        } else {
-          ft[k] = f[k] + t * dl[k];
-          /* guess: the tangent prediction (warm start of the s > 0 inverse) */
-          vt[k] = rtb_dashpot_velocity(ft[k], ch.C0, ch.alpha, ch.s, v[k] + t * D[k] * dl[k]);
-        }
+        /* steep: v moves, f = psi(v); else f moves, v = phi(f) warm-started
+         * at the tangent prediction. */
+        trial->v[k] = x->v[k] + t * x->D[k] * dl[k];
+        trial->f[k] = x->f[k] + t * dl[k];
+        trial->steep[k] = x->steep[k];
       }
-      double ht2;
-      const double ht = residual(ch, ft, vt, r, Ht, &ht2);
-      if (!(ht <= DBL_MAX) || ht2 > (1.0 - 2e-4 * t) * h2) continue;
-      for (int k = 0; k < n; ++k) { f[k] = ft[k]; v[k] = vt[k]; H[k] = Ht[k]; }
-      hnorm = ht;
-      h2 = ht2;
+      trial->fmax_abs = law_sweep(ch, trial->steep, trial->f, trial->v, trial->D, budget);
+      trial->hnorm = residual(ch, trial->f, trial->v, r, trial->H, &trial->h2);
+      if (!(trial->hnorm <= DBL_MAX) || trial->h2 > (1.0 - 2e-4 * t) * x->h2) continue;
+      Iterate *tmp = x;
+      x = trial;
+      trial = tmp;
       accepted = true;
       break;
+    }
+    if (!accepted && it == 0 && free_start && *budget >= n) {
+      /* The free pair was too far off the curve for a descent: restart from
+       * the law evaluated at v_guess (one more sweep). */
+      free_start = false;
+      evaluated_start(ch, v_guess, r, x, budget);
+      if (!(x->hnorm <= DBL_MAX)) break;
+      --it;
+      continue;
     }
     if (!accepted) break;
   }
   st->iterations = it;
   for (int k = 0; k < n; ++k) {
-    st->y[k] = st->c[k] + ch.h * v[k];
+    st->f[k] = x->f[k];
+    st->v[k] = x->v[k];
+    st->D[k] = x->D[k];
+    st->y[k] = st->c[k] + ch.h * x->v[k];
     if (!isfinite(st->y[k])) return RTB_ERR_OVERFLOW;
   }
   return st->converged ? RTB_OK : RTB_NOT_CONVERGED;

@@ -27,26 +27,38 @@ static rtb_status worse(rtb_status a, rtb_status b) {
  *         linearly), b_2 at t_{n+1}; L-stable and stiffly accurate. */
 extern "C" rtb_status rtb_chain_advance(const rtb_params *p, const rtb_settings *set,
                                         const rtb_state *s, double xb_new, double dt,
-                                        rtb_stage st[2]) {
+                                        rtb_stage st[2], int *budget) {
+  return rtb_chain_advance_from(p, set, s, xb_new, dt, NULL, NULL, st, budget);
+}
+
+extern "C" rtb_status rtb_chain_advance_from(const rtb_params *p, const rtb_settings *set,
+                                             const rtb_state *s, double xb_new, double dt,
+                                             const double *f1, const double *v1,
+                                             rtb_stage st[2], int *budget) {
   const int n = p->cells;
-  /* Warm start: velocities extrapolated linearly in time from the last two
-   * step ends (the converged result does not depend on it). */
-  double guess[RTB_MAX_CELLS];
+  /* Free start of the first stage: the last step's end, (f_n, v_n), with
+   * f_n = b(t_n) - K y_n from eq. (2) (no law evaluation). Fallback start:
+   * velocities extrapolated linearly in time from the last two step ends.
+   * The converged result does not depend on either. */
+  double f_end[RTB_MAX_CELLS], guess[RTB_MAX_CELLS];
+  rtb_chain_apply(n, p->Kpa, p->Kr, s->y, f_end);
+  for (int k = 0; k < n; ++k) f_end[k] = (k == 0 ? p->Kpa * s->xb : 0.0) - f_end[k];
   const int ns = rtb_integrator_stages(p);
   const double lead = ns == 1 ? dt : RTB_SDIRK_GAMMA * dt;
   const double w = s->dt_prev > 0.0 ? fmin(lead / s->dt_prev, 1.0) : 0.0;
   for (int k = 0; k < n; ++k) guess[k] = s->v[k] + w * (s->v[k] - s->v_prev[k]);
+  const double *fs = f1 && v1 ? f1 : f_end, *vs = f1 && v1 ? v1 : s->v;
   if (ns == 1) {
     st[0].h = dt;
     st[0].b1 = p->Kpa * xb_new;
     memcpy(st[0].c, s->y, sizeof(double) * n);
-    return rtb_stage_solve(p, set, guess, &st[0]);
+    return rtb_stage_solve(p, set, fs, vs, guess, &st[0], budget);
   }
   const double g = RTB_SDIRK_GAMMA;
   st[0].h = g * dt;
   st[0].b1 = p->Kpa * (s->xb + g * (xb_new - s->xb));
   memcpy(st[0].c, s->y, sizeof(double) * n);
-  rtb_status a = rtb_stage_solve(p, set, guess, &st[0]);
+  rtb_status a = rtb_stage_solve(p, set, fs, vs, guess, &st[0], budget);
   if (a < 0) return a;
   st[1].h = g * dt;
   st[1].b1 = p->Kpa * xb_new;
@@ -55,7 +67,8 @@ extern "C" rtb_status rtb_chain_advance(const rtb_params *p, const rtb_settings 
     /* from (t_n, v_n) and (t_n + g dt, v1) to t_n + dt */
     guess[k] = st[0].v[k] + (1.0 - g) / g * (st[0].v[k] - s->v[k]);
   }
-  return worse(a, rtb_stage_solve(p, set, guess, &st[1]));
+  /* Free start of the second stage: the first stage's solution. */
+  return worse(a, rtb_stage_solve(p, set, st[0].f, st[0].v, guess, &st[1], budget));
 }
 
 /* Tangent of one converged stage: (I + h D K) dy = dc + h D e1 db1. */
@@ -65,7 +78,7 @@ static void stage_tangent(const rtb_params *p, const rtb_stage *st, const double
   if (n < 1 || n > RTB_MAX_CELLS) return;
   double lo[RTB_MAX_CELLS], di[RTB_MAX_CELLS], up[RTB_MAX_CELLS], work[RTB_MAX_CELLS];
   for (int k = 0; k < n; ++k) {
-    const double D = rtb_dashpot_dvdf(st->f[k], st->v[k], p->C0, p->alpha, p->smoothing);
+    const double D = st->D[k]; /* phi' at the stage's pair, from its last law sweep */
     di[k] = 1.0 + st->h * D * rtb_chain_diag(k, p->Kpa, p->Kr);
     lo[k] = k > 0 ? -st->h * D * p->Kr : 0.0;
     up[k] = k + 1 < n ? -st->h * D * p->Kr : 0.0;
@@ -142,18 +155,23 @@ struct Response {
   rtb_status status;
 };
 
+/* warm: r holds an earlier response of this step (the clearance search);
+ * its first stage starts the new one (closer than the last step's end). */
 void respond(const rtb_state *s, const rtb_params *p, const rtb_settings *set, double xb,
-             double dt, bool tangent, Response *r) {
+             double dt, bool tangent, int *budget, Response *r, bool warm = false) {
   const int n = p->cells;
   double dy1 = 0.0;
   if (p->model == RTB_MODEL_RT) {
-    r->status = rtb_chain_advance(p, set, s, xb, dt, r->st);
+    const bool hint = warm && r->status >= 0;
+    r->status = rtb_chain_advance_from(p, set, s, xb, dt, hint ? r->st[0].f : NULL,
+                                       hint ? r->st[0].v : NULL, r->st, budget);
     const int ns = rtb_integrator_stages(p);
     memcpy(r->y, r->st[ns - 1].y, sizeof(double) * n);
     r->iterations = r->st[0].iterations + (ns == 2 ? r->st[1].iterations : 0);
     if (tangent && r->status >= 0) dy1 = chain_dy1_dxb(p, r->st, dt);
   } else {
     r->status = rtb_sts_solve(p, s->y, xb, r->y, &r->iterations, tangent ? &dy1 : NULL);
+    *budget -= n; /* no law: one unit per cell and solve bounds the clearance loop */
   }
   double dz;
   r->z = maxwell_update(p, s, xb, dt, &dz);
@@ -169,35 +187,45 @@ void respond(const rtb_state *s, const rtb_params *p, const rtb_settings *set, d
  * within [x - g/2, x + g/2]; inside the gap the bushing carries no load, so
  * xb = clamp(xb_free, x - g/2, x + g/2) with F(xb_free) = 0. F is increasing
  * in xb, so a safeguarded Newton/bisection on [x-g/2, x+g/2] finds it.
- * Bounded: at most 2 + RTB_BACKLASH_ITERS responses per step. */
+ * Bounded: at most 2 + RTB_BACKLASH_ITERS responses per step, and by the
+ * step's work budget (each response takes its law evaluations from it; a new
+ * one starts only while a sweep is left). Returns RTB_NOT_CONVERGED if the
+ * budget ended the search before F(xb) = 0 was met. */
 #define RTB_BACKLASH_ITERS 30
-static void resolve_backlash(const rtb_state *s, const rtb_params *p, const rtb_settings *set,
-                             double x, double dt, Response *r, double *xb_out, int *contact) {
+static rtb_status resolve_backlash(const rtb_state *s, const rtb_params *p,
+                                   const rtb_settings *set, double x, double dt, int *budget,
+                                   Response *r, double *xb_out, int *contact) {
   const double lo = x - 0.5 * p->backlash, hi = x + 0.5 * p->backlash;
   double xb = fmin(fmax(s->xb, lo), hi);
-  respond(s, p, set, xb, dt, true, r);
+  respond(s, p, set, xb, dt, true, budget, r);
   *contact = 1;
-  if (r->status < 0) { *xb_out = xb; return; }
+  if (r->status < 0) { *xb_out = xb; return RTB_OK; }
   if ((xb == lo && r->F >= 0.0) || (xb == hi && r->F <= 0.0) || r->F == 0.0) {
     *xb_out = xb;
     *contact = r->F != 0.0;
-    return;
+    return RTB_OK;
   }
+  *xb_out = xb;
+  if (*budget < p->cells) return RTB_NOT_CONVERGED;
   double a = lo, b = hi;
   if (r->F > 0.0) {
     b = xb;
-    respond(s, p, set, lo, dt, true, r);
-    if (r->status < 0 || r->F >= 0.0) { *xb_out = lo; return; }
+    respond(s, p, set, lo, dt, true, budget, r, true);
+    *xb_out = lo;
+    if (r->status < 0 || r->F >= 0.0) return RTB_OK;
   } else {
     a = xb;
-    respond(s, p, set, hi, dt, true, r);
-    if (r->status < 0 || r->F <= 0.0) { *xb_out = hi; return; }
+    respond(s, p, set, hi, dt, true, budget, r, true);
+    *xb_out = hi;
+    if (r->status < 0 || r->F <= 0.0) return RTB_OK;
   }
   *contact = 0;
   double scale = fabs(p->K0) + p->Kpa;
   xb = 0.5 * (a + b);
   for (int it = 0; it < RTB_BACKLASH_ITERS; ++it) {
-    respond(s, p, set, xb, dt, true, r);
+    if (*budget < p->cells) return RTB_NOT_CONVERGED; /* r is the last response: at *xb_out */
+    respond(s, p, set, xb, dt, true, budget, r, true);
+    *xb_out = xb;
     if (r->status < 0) break;
     if (r->F > 0.0) b = xb; else a = xb;
     if (fabs(r->F) <= set->tol * scale * (fabs(xb) + p->backlash) || b - a <= 4 * DBL_EPSILON * fabs(xb))
@@ -205,7 +233,7 @@ static void resolve_backlash(const rtb_state *s, const rtb_params *p, const rtb_
     double nx = xb - r->F / r->dF;
     xb = (r->dF > 0.0 && nx > a && nx < b) ? nx : 0.5 * (a + b);
   }
-  *xb_out = xb;
+  return RTB_OK;
 }
 
 static rtb_status check_call(const rtb_state *s, const rtb_params *p, double x, double dt) {
@@ -233,9 +261,14 @@ extern "C" rtb_status rtb_step_detailed(const rtb_state *s, const rtb_params *p,
   Response r;
   double xb = x;
   int contact = 1;
-  if (p->backlash > 0.0) resolve_backlash(s, p, &set, x, dt, &r, &xb, &contact);
-  else respond(s, p, &set, xb, dt, dforce_dx != NULL, &r);
+  int budget = RTB_STEP_WORK(p->cells);
+  rtb_status clearance = RTB_OK;
+  if (p->backlash > 0.0)
+    clearance = resolve_backlash(s, p, &set, x, dt, &budget, &r, &xb, &contact);
+  else respond(s, p, &set, xb, dt, dforce_dx != NULL, &budget, &r);
   if (r.status < 0) return r.status;
+  r.status = worse(r.status, clearance);
+
 
   /* Inertia of the load path: F += m a with backward differences of x. */
   const double vx = (x - s->x) / dt;
