@@ -4,6 +4,9 @@
 #   make demo     build, then run `build/rtb demo`
 #   make bench    build, then run the Google Benchmark suite (JSON in build/bench.json)
 #   make report   build, then run `build/rtb report`
+#   make embedded cross-compile for a Cortex-M4F, print size and stack, run a
+#                 test firmware in QEMU (installs its own Debian packages;
+#                 not needed by make test)
 #   make clean    remove the build trees
 # Every target except clean first checks the Debian packages it needs (deps).
 
@@ -24,16 +27,21 @@ SUBMAKE_ENV := env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL
 DEB_PACKAGES := cmake g++ make libgtest-dev libbenchmark-dev libeigen3-dev \
                 nlohmann-json3-dev gnuplot-nox
 
-.PHONY: all deps configure build test test-release check-symbols test-asan \
-        demo bench report clean
+# make embedded only (issue #11): cross toolchain, newlib, the QEMU board.
+EMBEDDED_PACKAGES := gcc-arm-none-eabi libnewlib-arm-none-eabi qemu-system-arm python3
+
+.PHONY: all deps deps-embedded configure build test test-release check-symbols test-asan \
+        demo bench report embedded clean
 
 all: build
 
 # ------------------------------------------------------------------ deps
 # Only Debian packages are ever installed; nothing else is downloaded.
-deps:
+# $(call install_debs,PACKAGES): install the missing ones (as root), or say
+# which to install.
+define install_debs
 	@missing=""; \
-	for p in $(DEB_PACKAGES); do \
+	for p in $(1); do \
 	  if ! dpkg-query -W -f='$${Status}\n' "$$p" 2>/dev/null | grep -q '^install ok installed$$'; then \
 	    missing="$$missing $$p"; \
 	  fi; \
@@ -48,6 +56,13 @@ deps:
 	  echo "sudo apt-get install -y $$missing"; \
 	  exit 1; \
 	fi
+endef
+
+deps:
+	$(call install_debs,$(DEB_PACKAGES))
+
+deps-embedded:
+	$(call install_debs,$(EMBEDDED_PACKAGES))
 
 # ------------------------------------------------------------------ build
 configure: deps
@@ -100,5 +115,11 @@ bench: build
 	@if [ ! -x $(BUILD)/bench/rtb_bench ]; then echo "$(BUILD)/bench/rtb_bench was not built (no bench/*_bench.cpp?)"; exit 1; fi
 	./$(BUILD)/bench/rtb_bench --benchmark_out=$(BUILD)/bench.json --benchmark_out_format=json
 
+# ------------------------------------------------------------------ embedded
+# Cortex-M4F single-precision build, size, stack depth, QEMU test firmware
+# (embedded/Makefile says what each step does). Output in build-embedded/.
+embedded: deps-embedded
+	$(SUBMAKE_ENV) $(MAKE) -C embedded OUT=$(CURDIR)/build-embedded
+
 clean:
-	rm -rf $(BUILD) $(ASAN)
+	rm -rf $(BUILD) $(ASAN) build-embedded

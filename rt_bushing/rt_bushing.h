@@ -34,8 +34,16 @@ extern "C" {
 #define RTB_DEFAULT_CELLS 15  /* the paper's choice (section 3.4) */
 #define RTB_N_RESERVED 13
 
+/* The scalar: double, or float when compiled with -DRTB_SINGLE (for a
+ * microcontroller with a single-precision FPU; the library and every client
+ * must agree: RTB_SCALAR_BYTES and rtb_get_info tell which one was built). */
+#ifdef RTB_SINGLE
+typedef float rtb_real;
+#define RTB_SCALAR_BYTES 4    /* sizeof(rtb_real); checked by generated headers */
+#else
 typedef double rtb_real;
 #define RTB_SCALAR_BYTES 8    /* sizeof(rtb_real); checked by generated headers */
+#endif
 
 /* Lower bound on the dashpot exponent: alpha -> 0 is the STS friction limit
  * (section 3.2); below this use RTB_MODEL_STS. */
@@ -218,7 +226,7 @@ typedef struct rtb_info {
   int max_cells;
   int scalar_bytes;
   const char *version;   /* library version string, "major.minor.patch" */
-  const char *scalar;    /* "double" */
+  const char *scalar;    /* "double", or "float" (RTB_SINGLE) */
 } rtb_info;
 
 void rtb_get_info(rtb_info *info);

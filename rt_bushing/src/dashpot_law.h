@@ -15,40 +15,42 @@
 #include <float.h>
 #include <math.h>
 
+#include "rtb_scalar.h"
+
 
 /* psi(v), eq. (1). */
-static inline double rtb_law_force(double v, double C0, double alpha) {
+static inline rtb_real rtb_law_force(rtb_real v, rtb_real C0, rtb_real alpha) {
   if (v == 0.0) return 0.0;
-  double m = C0 * exp(alpha * log(fabs(v)));
+  rtb_real m = C0 * exp(alpha * log(fabs(v)));
   return v > 0.0 ? m : -m;
 }
 
 /* phi(f), inverse of eq. (1). May overflow to +-inf far in the steep regime;
  * callers treat a non-finite value as a rejected trial point. */
-static inline double rtb_law_velocity(double f, double C0, double alpha) {
+static inline rtb_real rtb_law_velocity(rtb_real f, rtb_real C0, rtb_real alpha) {
   if (f == 0.0) return 0.0;
-  double m = exp(log(fabs(f) / C0) / alpha);
+  rtb_real m = exp(log(fabs(f) / C0) / alpha);
   return f > 0.0 ? m : -m;
 }
 
 /* phi'(f) = (1/alpha) v/f, given v = phi(f); 0 at f = 0. */
-static inline double rtb_law_dvdf(double f, double v, double alpha) {
+static inline rtb_real rtb_law_dvdf(rtb_real f, rtb_real v, rtb_real alpha) {
   return (f == 0.0 || v == 0.0) ? 0.0 : v / (alpha * f);
 }
 
 /* d phi / d C0 at fixed f = -(1/alpha) v / C0. */
-static inline double rtb_law_dv_dC0(double v, double C0, double alpha) {
+static inline rtb_real rtb_law_dv_dC0(rtb_real v, rtb_real C0, rtb_real alpha) {
   return -v / (alpha * C0);
 }
 
 /* d phi / d alpha at fixed f = -v ln(|f|/C0) / alpha^2 (0 at f = 0). */
-static inline double rtb_law_dv_dalpha(double f, double v, double C0, double alpha) {
+static inline rtb_real rtb_law_dv_dalpha(rtb_real f, rtb_real v, rtb_real C0, rtb_real alpha) {
   /* v == 0 also covers f so small that |f|/C0 underflows (log would be -inf). */
   return v == 0.0 ? 0.0 : -v * log(fabs(f) / C0) / (alpha * alpha);
 }
 
 /* Dissipation potential of phi: Phi*(f) = int_0^f phi = alpha/(1+alpha) f v. */
-static inline double rtb_law_dual_potential(double f, double v, double alpha) {
+static inline rtb_real rtb_law_dual_potential(rtb_real f, rtb_real v, rtb_real alpha) {
   return alpha / (1.0 + alpha) * f * v;
 }
 
@@ -73,40 +75,40 @@ static inline double rtb_law_dual_potential(double f, double v, double alpha) {
 /* ln |v|_s, eq. (14), by the same operations as rtb_slaw_force. With
  * e = exp(-s|v|) in (exp(-40), 1] there: |v|_s = |v| + (2/s) log1p(e), and
  * only for s < ~1e-307 (2/s overflows) ln(s|v| + 2 log1p(e)) - ln s. */
-static inline double rtb_slaw_log_abs(double v, double s) {
-  const double a = fabs(v), sa = s * a;
+static inline rtb_real rtb_slaw_log_abs(rtb_real v, rtb_real s) {
+  const rtb_real a = fabs(v), sa = s * a;
   if (sa >= RTB_SLAW_SHARP) return log(a);
-  const double L = log1p(1.0 + expm1(-sa));
-  const double A = a + 2.0 * L / s;
-  return A <= DBL_MAX ? log(A) : log(sa + 2.0 * L) - log(s);
+  const rtb_real L = log1p(1.0 + expm1(-sa));
+  const rtb_real A = a + 2.0 * L / s;
+  return A <= RTB_REAL_MAX ? log(A) : log(sa + 2.0 * L) - log(s);
 }
 
 /* psi_s(v) and (if dfdv) psi_s'(v) = C0 |v|_s^alpha (sign_s' + alpha
  * sign_s^2 / |v|_s), sign_s' = 2 s e / (1 + e)^2. Both terms are >= 0, so
  * the slope is never negative; it is > 0 wherever psi_s is finite. */
-static inline double rtb_slaw_force(double v, double C0, double alpha, double s,
-                                    double *dfdv) {
-  const double a = fabs(v), sa = s * a;
+static inline rtb_real rtb_slaw_force(rtb_real v, rtb_real C0, rtb_real alpha, rtb_real s,
+                                    rtb_real *dfdv) {
+  const rtb_real a = fabs(v), sa = s * a;
   if (sa >= RTB_SLAW_SHARP) {
-    const double m = rtb_law_force(a, C0, alpha), e = exp(-sa);
+    const rtb_real m = rtb_law_force(a, C0, alpha), e = exp(-sa);
     if (dfdv) { /* = C0 |v|^alpha (sign_s' + alpha/|v|); e == 0 or |v| = inf: no 0 * inf */
-      const double t = e > 0.0 ? 2.0 * sa * e / ((1.0 + e) * (1.0 + e)) : 0.0;
-      *dfdv = a <= DBL_MAX ? m / a * (t + alpha) : 0.0;
+      const rtb_real t = e > 0.0 ? 2.0 * sa * e / ((1.0 + e) * (1.0 + e)) : 0.0;
+      *dfdv = a <= RTB_REAL_MAX ? m / a * (t + alpha) : 0.0;
     }
     return v < 0.0 ? -m : m;
   }
-  const double em = expm1(-sa), e = 1.0 + em; /* e in (exp(-40), 1]: no underflow */
-  const double S = -em / (2.0 + em);          /* |sign_s(v)| = tanh(s|v|/2) */
-  const double L = log1p(e);
-  const double A = a + 2.0 * L / s;           /* |v|_s; inf only for s < ~1e-307 */
-  const double lnA = A <= DBL_MAX ? log(A) : log(sa + 2.0 * L) - log(s);
-  const double P = exp(alpha * lnA);          /* |v|_s^alpha */
+  const rtb_real em = expm1(-sa), e = 1.0 + em; /* e in (exp(-40), 1]: no underflow */
+  const rtb_real S = -em / (2.0 + em);          /* |sign_s(v)| = tanh(s|v|/2) */
+  const rtb_real L = log1p(e);
+  const rtb_real A = a + 2.0 * L / s;           /* |v|_s; inf only for s < ~1e-307 */
+  const rtb_real lnA = A <= RTB_REAL_MAX ? log(A) : log(sa + 2.0 * L) - log(s);
+  const rtb_real P = exp(alpha * lnA);          /* |v|_s^alpha */
   if (dfdv) {
-    const double dS = 2.0 * s * e / ((1.0 + e) * (1.0 + e));
-    const double PA = A <= DBL_MAX ? P / A : exp((alpha - 1.0) * lnA); /* |v|_s^(alpha-1) */
+    const rtb_real dS = 2.0 * s * e / ((1.0 + e) * (1.0 + e));
+    const rtb_real PA = A <= RTB_REAL_MAX ? P / A : exp((alpha - 1.0) * lnA); /* |v|_s^(alpha-1) */
     *dfdv = C0 * (dS * P + alpha * S * S * PA);
   }
-  const double m = C0 * S * P;
+  const rtb_real m = C0 * S * P;
   return v < 0.0 ? -m : m;
 }
 
@@ -130,42 +132,42 @@ static inline double rtb_slaw_force(double v, double C0, double alpha, double s,
 /* The inverse with an explicit evaluation cap: at most max_evals (>= 1)
  * psi_s evaluations; *evals receives the number used (>= 1 whenever f != 0,
  * so a caller's work count stays honest) and *dvdf (may be NULL) 1/psi_s'
- * at the last evaluated point (capped at DBL_MAX), which differs from the
+ * at the last evaluated point (capped at RTB_REAL_MAX), which differs from the
  * returned v by at most the final Newton correction (rounding level when
  * converged). When the cap ends the iteration the best bracketed iterate is
  * returned. */
-static inline double rtb_slaw_velocity_n(double f, double C0, double alpha, double s,
-                                         double guess, int max_evals, int *evals,
-                                         double *dvdf) {
+static inline rtb_real rtb_slaw_velocity_n(rtb_real f, rtb_real C0, rtb_real alpha, rtb_real s,
+                                         rtb_real guess, int max_evals, int *evals,
+                                         rtb_real *dvdf) {
   *evals = 1;
   if (dvdf) *dvdf = 0.0;
   if (f == 0.0) return 0.0;
-  const double m = fabs(f);
-  const double vu = rtb_law_velocity(m, C0, alpha);
-  if (!(vu <= DBL_MAX)) return f > 0.0 ? INFINITY : -INFINITY;
+  const rtb_real m = fabs(f);
+  const rtb_real vu = rtb_law_velocity(m, C0, alpha);
+  if (!(vu <= RTB_REAL_MAX)) return f > 0.0 ? INFINITY : -INFINITY;
   if (s * vu >= RTB_SLAW_SHARP) { /* psi_s(vu) == f to rounding */
     if (dvdf) *dvdf = rtb_law_dvdf(m, vu, alpha);
     return f > 0.0 ? vu : -vu;
   }
-  double lo = vu - 2.0 * 0.69314718055994530942 / s;
+  rtb_real lo = vu - 2.0 * 0.69314718055994530942 / s;
   if (!(lo > 0.0)) lo = 0.0;
-  double hi = 4.0 * (vu + 2.0 / s);
-  if (!(hi <= DBL_MAX)) hi = DBL_MAX;
-  const double g = f > 0.0 ? guess : -guess;
-  double v = (g > lo && g < hi) ? g : (vu < lo ? lo : (vu > hi ? hi : vu));
+  rtb_real hi = 4.0 * (vu + 2.0 / s);
+  if (!(hi <= RTB_REAL_MAX)) hi = RTB_REAL_MAX;
+  const rtb_real g = f > 0.0 ? guess : -guess;
+  rtb_real v = (g > lo && g < hi) ? g : (vu < lo ? lo : (vu > hi ? hi : vu));
   int it = 0;
   while (it < max_evals) {
-    double d;
-    const double r = rtb_slaw_force(v, C0, alpha, s, &d) - m;
+    rtb_real d;
+    const rtb_real r = rtb_slaw_force(v, C0, alpha, s, &d) - m;
     ++it;
-    if (dvdf) { const double D = 1.0 / d; *dvdf = D <= DBL_MAX ? D : DBL_MAX; }
+    if (dvdf) { const rtb_real D = 1.0 / d; *dvdf = D <= RTB_REAL_MAX ? D : RTB_REAL_MAX; }
     if (r == 0.0) break;
     if (r > 0.0) hi = v; else lo = v;
-    double vn = v - r / d;
+    rtb_real vn = v - r / d;
     /* Converged: the step or the force residual is at rounding level (the
      * inverse amplifies rounding by up to 1/alpha, so a step test alone
      * could idle until the bracket collapses). */
-    if (fabs(vn - v) <= 2.0 * DBL_EPSILON * v || fabs(r) <= 4.0 * DBL_EPSILON * m) {
+    if (fabs(vn - v) <= 2.0 * RTB_REAL_EPSILON * v || fabs(r) <= 4.0 * RTB_REAL_EPSILON * m) {
       if (vn >= lo && vn <= hi) v = vn;
       break;
     }
@@ -174,14 +176,14 @@ static inline double rtb_slaw_velocity_n(double f, double C0, double alpha, doub
     if (!(vn > lo && vn < hi))
       vn = (lo > 0.0 && hi > 4.0 * lo) ? sqrt(lo) * sqrt(hi) : lo + 0.5 * (hi - lo);
     v = vn;
-    if (hi - lo <= 2.0 * DBL_EPSILON * hi) break;
+    if (hi - lo <= 2.0 * RTB_REAL_EPSILON * hi) break;
   }
   *evals = it > 0 ? it : 1;
   return f > 0.0 ? v : -v;
 }
 
-static inline double rtb_slaw_velocity(double f, double C0, double alpha, double s,
-                                       double guess) {
+static inline rtb_real rtb_slaw_velocity(rtb_real f, rtb_real C0, rtb_real alpha, rtb_real s,
+                                       rtb_real guess) {
   int evals;
   return rtb_slaw_velocity_n(f, C0, alpha, s, guess, RTB_SLAW_INV_ITERS, &evals, 0);
 }
@@ -192,34 +194,34 @@ static inline double rtb_slaw_velocity(double f, double C0, double alpha, double
  * without smoothing), eq. (14) when s > 0. Derivatives are those of v at
  * fixed f, as the stage equations need them (rtb_internal.h).
  */
-static inline double rtb_dashpot_force(double v, double C0, double alpha, double s) {
+static inline rtb_real rtb_dashpot_force(rtb_real v, rtb_real C0, rtb_real alpha, rtb_real s) {
   return s > 0.0 ? rtb_slaw_force(v, C0, alpha, s, 0) : rtb_law_force(v, C0, alpha);
 }
 
 /* `guess` only warm-starts the smoothed inverse (any value is safe). */
-static inline double rtb_dashpot_velocity(double f, double C0, double alpha, double s,
-                                          double guess) {
+static inline rtb_real rtb_dashpot_velocity(rtb_real f, rtb_real C0, rtb_real alpha, rtb_real s,
+                                          rtb_real guess) {
   return s > 0.0 ? rtb_slaw_velocity(f, C0, alpha, s, guess) : rtb_law_velocity(f, C0, alpha);
 }
 
-/* dv/df = 1/psi_s'(v) (finite and > 0 for s > 0; capped at DBL_MAX). */
-static inline double rtb_dashpot_dvdf(double f, double v, double C0, double alpha, double s) {
+/* dv/df = 1/psi_s'(v) (finite and > 0 for s > 0; capped at RTB_REAL_MAX). */
+static inline rtb_real rtb_dashpot_dvdf(rtb_real f, rtb_real v, rtb_real C0, rtb_real alpha, rtb_real s) {
   if (!(s > 0.0)) return rtb_law_dvdf(f, v, alpha);
-  double d;
+  rtb_real d;
   rtb_slaw_force(v, C0, alpha, s, &d);
-  const double D = 1.0 / d;
-  return D <= DBL_MAX ? D : DBL_MAX;
+  const rtb_real D = 1.0 / d;
+  return D <= RTB_REAL_MAX ? D : RTB_REAL_MAX;
 }
 
 /* dv/dC0 at fixed f: psi_s is linear in C0, so dv/dC0 = -(f/C0) dv/df. */
-static inline double rtb_dashpot_dv_dC0(double f, double v, double C0, double alpha, double s) {
+static inline rtb_real rtb_dashpot_dv_dC0(rtb_real f, rtb_real v, rtb_real C0, rtb_real alpha, rtb_real s) {
   if (!(s > 0.0)) return rtb_law_dv_dC0(v, C0, alpha);
   return -(f / C0) * rtb_dashpot_dvdf(f, v, C0, alpha, s);
 }
 
 /* dv/dalpha at fixed f: d psi_s/d alpha = f ln|v|_s, so dv/dalpha =
  * -f ln|v|_s dv/df. */
-static inline double rtb_dashpot_dv_dalpha(double f, double v, double C0, double alpha, double s) {
+static inline rtb_real rtb_dashpot_dv_dalpha(rtb_real f, rtb_real v, rtb_real C0, rtb_real alpha, rtb_real s) {
   if (!(s > 0.0)) return rtb_law_dv_dalpha(f, v, C0, alpha);
   return -f * rtb_slaw_log_abs(v, s) * rtb_dashpot_dvdf(f, v, C0, alpha, s);
 }
@@ -232,11 +234,11 @@ static inline double rtb_dashpot_dv_dalpha(double f, double v, double C0, double
  * rounding (phi uses the reciprocal of C0 instead of a division by it).
  */
 typedef struct rtb_law {
-  double C0, alpha, s;      /* s: eq. (14) smoothing, 0 = exact eq. (1) */
-  double inv_C0, inv_alpha;
+  rtb_real C0, alpha, s;      /* s: eq. (14) smoothing, 0 = exact eq. (1) */
+  rtb_real inv_C0, inv_alpha;
 } rtb_law;
 
-static inline void rtb_law_init(rtb_law *L, double C0, double alpha, double s) {
+static inline void rtb_law_init(rtb_law *L, rtb_real C0, rtb_real alpha, rtb_real s) {
   L->C0 = C0;
   L->alpha = alpha;
   L->s = s;
@@ -245,26 +247,26 @@ static inline void rtb_law_init(rtb_law *L, double C0, double alpha, double s) {
 }
 
 /* f = psi(v) and *D = phi'(f) at the pair (0 at v = 0). One psi evaluation. */
-static inline double rtb_law_eval_v(const rtb_law *L, double v, double *D) {
+static inline rtb_real rtb_law_eval_v(const rtb_law *L, rtb_real v, rtb_real *D) {
   if (L->s > 0.0) {
-    double d;
-    const double f = rtb_slaw_force(v, L->C0, L->alpha, L->s, &d);
-    const double Dv = 1.0 / d;
-    *D = Dv <= DBL_MAX ? Dv : DBL_MAX;
+    rtb_real d;
+    const rtb_real f = rtb_slaw_force(v, L->C0, L->alpha, L->s, &d);
+    const rtb_real Dv = 1.0 / d;
+    *D = Dv <= RTB_REAL_MAX ? Dv : RTB_REAL_MAX;
     return f;
   }
-  const double a = fabs(v);
+  const rtb_real a = fabs(v);
   if (a == 0.0) { *D = 0.0; return 0.0; }
-  const double m = L->C0 * exp(L->alpha * log(a));  /* eq. (1) */
+  const rtb_real m = L->C0 * exp(L->alpha * log(a));  /* eq. (1) */
   *D = m > 0.0 ? a / (L->alpha * m) : 0.0;          /* phi' = v / (alpha f) */
   return v > 0.0 ? m : -m;
 }
 
 /* v = phi(f) of eq. (1) (no smoothing) and *D = phi'(f). */
-static inline double rtb_law_eval_pow_f(const rtb_law *L, double f, double *D) {
-  const double a = fabs(f);
+static inline rtb_real rtb_law_eval_pow_f(const rtb_law *L, rtb_real f, rtb_real *D) {
+  const rtb_real a = fabs(f);
   if (a == 0.0) { *D = 0.0; return 0.0; }
-  const double m = exp(log(a * L->inv_C0) * L->inv_alpha); /* inverse of eq. (1) */
+  const rtb_real m = exp(log(a * L->inv_C0) * L->inv_alpha); /* inverse of eq. (1) */
   *D = m > 0.0 ? m / (L->alpha * a) : 0.0;
   return f > 0.0 ? m : -m;
 }
@@ -272,7 +274,7 @@ static inline double rtb_law_eval_pow_f(const rtb_law *L, double f, double *D) {
 /* v = phi(f) and *D = phi'(f). `guess` warm-starts the smoothed inverse;
  * *cap: in, the most psi_s evaluations it may use (>= 1); out, the count
  * used (1 for eq. (1)). */
-static inline double rtb_law_eval_f(const rtb_law *L, double f, double guess, double *D,
+static inline rtb_real rtb_law_eval_f(const rtb_law *L, rtb_real f, rtb_real guess, rtb_real *D,
                                     int *cap) {
   if (L->s > 0.0) {
     const int max_evals = *cap < 1 ? 1 : (*cap < RTB_SLAW_INV_ITERS ? *cap : RTB_SLAW_INV_ITERS);
@@ -284,7 +286,7 @@ static inline double rtb_law_eval_f(const rtb_law *L, double f, double guess, do
 
 /* phi'(f) of a pair (f, v) already on the curve; *evals: law evaluations
  * this took (0 for eq. (1), which needs only a division). */
-static inline double rtb_law_dvdf_pair(const rtb_law *L, double f, double v, int *evals) {
+static inline rtb_real rtb_law_dvdf_pair(const rtb_law *L, rtb_real f, rtb_real v, int *evals) {
   if (!(L->s > 0.0)) { *evals = 0; return rtb_law_dvdf(f, v, L->alpha); }
   *evals = 1;
   return rtb_dashpot_dvdf(f, v, L->C0, L->alpha, L->s);

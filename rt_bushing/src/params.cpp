@@ -27,7 +27,7 @@ extern "C" rtb_status rtb_params_default(rtb_params *p, int model) {
 }
 
 static int finite_all(const rtb_params *p) {
-  const double v[] = {p->K0, p->Kpa, p->Kr, p->C0, p->alpha, p->Ff, p->k3, p->k_asym,
+  const rtb_real v[] = {p->K0, p->Kpa, p->Kr, p->C0, p->alpha, p->Ff, p->k3, p->k_asym,
                       p->maxwell_k, p->maxwell_tau, p->viscous_c, p->mass, p->backlash,
                       p->mullins, p->smoothing, p->sat_force, p->sat_disp};
   for (size_t i = 0; i < sizeof v / sizeof v[0]; ++i)
@@ -65,7 +65,7 @@ extern "C" rtb_status rtb_params_validate(const rtb_params *p) {
 
 extern "C" void rtb_settings_default(rtb_settings *s) {
   if (!s) return;
-  s->tol = 1e-10;
+  s->tol = RTB_TOL_DEFAULT;
   s->max_iter = 40;
   s->max_backtrack = 30;
 }
@@ -73,7 +73,7 @@ extern "C" void rtb_settings_default(rtb_settings *s) {
 extern "C" rtb_status rtb_settings_resolve(const rtb_settings *in, rtb_settings *out) {
   rtb_settings_default(out);
   if (!in) return RTB_OK;
-  if (!(in->tol >= 1e-16 && in->tol <= 1e-2)) return RTB_ERR_SETTINGS;
+  if (!(in->tol >= RTB_TOL_MIN && in->tol <= 1e-2)) return RTB_ERR_SETTINGS;
   if (in->max_iter < 1 || in->max_iter > 100) return RTB_ERR_SETTINGS;
   if (in->max_backtrack < 0 || in->max_backtrack > 60) return RTB_ERR_SETTINGS;
   *out = *in;
@@ -107,14 +107,18 @@ extern "C" void rtb_get_info(rtb_info *info) {
   info->max_cells = RTB_MAX_CELLS;
   info->scalar_bytes = (int)sizeof(rtb_real);
   info->version = RTB_VERSION_STRING;
+#ifdef RTB_SINGLE
+  info->scalar = "float";
+#else
   info->scalar = "double";
+#endif
 }
 
 extern "C" rtb_real rtb_static_force(const rtb_params *p, rtb_real x) {
   if (!p) return 0.0;
   /* All dashpots relaxed: Kpa and N springs Kr in series, parallel to K0. */
-  const double chain = 1.0 / (1.0 / p->Kpa + p->cells / p->Kr);
-  const double sat = p->sat_disp > 0.0 ? p->sat_force * tanh(x / p->sat_disp) : 0.0;
+  const rtb_real chain = 1.0 / (1.0 / p->Kpa + p->cells / p->Kr);
+  const rtb_real sat = p->sat_disp > 0.0 ? p->sat_force * tanh(x / p->sat_disp) : 0.0;
   return p->K0 * x + chain * x + p->k3 * x * x * x + p->k_asym * fabs(x) + sat;
 }
 

@@ -5,7 +5,7 @@
 #ifndef RTB_INTERNAL_H
 #define RTB_INTERNAL_H
 
-#include "../rt_bushing.h"
+#include "rtb_scalar.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -17,13 +17,13 @@ extern "C" {
  * phi is the inverse of eq. (1), or of its eq. (14) smoothing when
  * p->smoothing > 0 (dashpot_law.h, rtb_dashpot_*).                        */
 typedef struct rtb_stage {
-  double h;                    /* stage step length [time] */
-  double b1;                   /* Kpa * xb at the stage time [force] */
-  double c[RTB_MAX_CELLS];     /* explicit part of the stage [length] */
-  double f[RTB_MAX_CELLS];     /* converged dashpot forces [force] */
-  double v[RTB_MAX_CELLS];     /* converged cell velocities [length/time] */
-  double y[RTB_MAX_CELLS];     /* stage cell DOFs [length] */
-  double D[RTB_MAX_CELLS];     /* phi'(f) at the returned pair [length/(force time)] */
+  rtb_real h;                    /* stage step length [time] */
+  rtb_real b1;                   /* Kpa * xb at the stage time [force] */
+  rtb_real c[RTB_MAX_CELLS];     /* explicit part of the stage [length] */
+  rtb_real f[RTB_MAX_CELLS];     /* converged dashpot forces [force] */
+  rtb_real v[RTB_MAX_CELLS];     /* converged cell velocities [length/time] */
+  rtb_real y[RTB_MAX_CELLS];     /* stage cell DOFs [length] */
+  rtb_real D[RTB_MAX_CELLS];     /* phi'(f) at the returned pair [length/(force time)] */
   int iterations;
   int converged;
 } rtb_stage;
@@ -33,8 +33,8 @@ typedef struct rtb_stage {
  * on the dashpot curve (previous solution); v_guess (may be NULL) the
  * fallback start. *budget: law evaluations left in this step, decremented
  * (stage_newton.cpp). Returns RTB_OK, RTB_NOT_CONVERGED or RTB_ERR_OVERFLOW. */
-rtb_status rtb_stage_solve(const rtb_params *p, const rtb_settings *set, const double *f0,
-                           const double *v0, const double *v_guess, rtb_stage *st,
+rtb_status rtb_stage_solve(const rtb_params *p, const rtb_settings *set, const rtb_real *f0,
+                           const rtb_real *v0, const rtb_real *v_guess, rtb_stage *st,
                            int *budget);
 
 /* SDIRK2 coefficient gamma = 1 - 1/sqrt(2) (Alexander 1977). */
@@ -45,31 +45,31 @@ int rtb_integrator_stages(const rtb_params *p);
  * stages (st[0..stages-1]). The new DOFs are st[stages-1].y. *budget: law
  * evaluations left in this step (decremented). */
 rtb_status rtb_chain_advance(const rtb_params *p, const rtb_settings *set,
-                             const rtb_state *s, double xb_new, double dt,
+                             const rtb_state *s, rtb_real xb_new, rtb_real dt,
                              rtb_stage st[2], int *budget);
 /* The same, with the first stage started from the pair (f1, v1) (both or
  * neither NULL) instead of the last step's end: another solution of the
  * first stage for a nearby xb_new. f1/v1 may alias st[0].f/st[0].v. */
 rtb_status rtb_chain_advance_from(const rtb_params *p, const rtb_settings *set,
-                                  const rtb_state *s, double xb_new, double dt,
-                                  const double *f1, const double *v1, rtb_stage st[2],
+                                  const rtb_state *s, rtb_real xb_new, rtb_real dt,
+                                  const rtb_real *f1, const rtb_real *v1, rtb_stage st[2],
                                   int *budget);
 
 /* Rate-independent STS step (section 3.1): exact backward-Euler return map of
  * the friction chain by a primal-dual active-set method. */
-rtb_status rtb_sts_solve(const rtb_params *p, const double *y_old, double xb_new,
-                         double *y_new, int *iterations, double *dy1_dxb);
+rtb_status rtb_sts_solve(const rtb_params *p, const rtb_real *y_old, rtb_real xb_new,
+                         rtb_real *y_new, int *iterations, rtb_real *dy1_dxb);
 
 /* Force of the bushing (without inertia) for its displacement xb and DOF y1,
  * eq. (11) plus the elastic/viscous extensions; also dF/dxb at fixed y1. */
-double rtb_bushing_force(const rtb_params *p, const rtb_state *s_old, double xb,
-                         double y1, double z_maxwell, double dt, double *dF_dxb);
+rtb_real rtb_bushing_force(const rtb_params *p, const rtb_state *s_old, rtb_real xb,
+                         rtb_real y1, rtb_real z_maxwell, rtb_real dt, rtb_real *dF_dxb);
 
 /* The full step with all internals exposed; rtb_evaluate is a thin wrapper.
  * `stages` may be NULL. */
 rtb_status rtb_step_detailed(const rtb_state *s, const rtb_params *p,
-                             const rtb_settings *set, double x, double dt,
-                             rtb_state *out, double *force, double *dforce_dx,
+                             const rtb_settings *set, rtb_real x, rtb_real dt,
+                             rtb_state *out, rtb_real *force, rtb_real *dforce_dx,
                              rtb_stage stages[2]);
 
 /* Validate settings (NULL = defaults) into a usable copy. */

@@ -48,30 +48,30 @@ namespace {
 
 struct Chain {
   int n;
-  double Kpa, Kr, h;
-  double hKr, hK0;   /* h Kr and h (Kpa + Kr): the Newton matrix's entries */
+  rtb_real Kpa, Kr, h;
+  rtb_real hKr, hK0;   /* h Kr and h (Kpa + Kr): the Newton matrix's entries */
   rtb_law law;       /* eq. (1) / (14) with its constants hoisted */
 };
 
 /* H = f + h K v - r; returns the max-norm (and the squared 2-norm in *sq),
  * or +inf if anything is non-finite. */
-double residual(const Chain &ch, const double *f, const double *v, const double *r,
-                double *H, double *sq) {
+rtb_real residual(const Chain &ch, const rtb_real *f, const rtb_real *v, const rtb_real *r,
+                rtb_real *H, rtb_real *sq) {
   const int n = ch.n;
-  const double hKr = ch.hKr, h2Kr = 2.0 * ch.hKr;
+  const rtb_real hKr = ch.hKr, h2Kr = 2.0 * ch.hKr;
   /* Row 0 (Kpa + Kr on the diagonal) and row n-1 (no right neighbour) are
    * peeled so the interior loop has no branch (it vectorises). */
   H[0] = f[0] + ch.hK0 * v[0] - r[0];
   if (n > 1) H[0] -= hKr * v[1];
   for (int k = 1; k < n - 1; ++k) H[k] = f[k] + h2Kr * v[k] - hKr * (v[k - 1] + v[k + 1]) - r[k];
   if (n > 1) H[n - 1] = f[n - 1] + h2Kr * v[n - 1] - hKr * v[n - 2] - r[n - 1];
-  double nrm = 0.0, s2 = 0.0;
+  rtb_real nrm = 0.0, s2 = 0.0;
   for (int k = 0; k < n; ++k) {
-    const double a = fabs(H[k]);
+    const rtb_real a = fabs(H[k]);
     nrm = a > nrm ? a : nrm;
     s2 += a * a;
   }
-  if (!(nrm <= DBL_MAX) || s2 != s2) return INFINITY; /* inf or NaN somewhere */
+  if (!(nrm <= RTB_REAL_MAX) || s2 != s2) return INFINITY; /* inf or NaN somewhere */
   *sq = s2;
   return nrm;
 }
@@ -79,9 +79,9 @@ double residual(const Chain &ch, const double *f, const double *v, const double 
 /* Evaluate the law at v (steep DOFs) or f (the others) for all cells; D =
  * dv/df at the new pair, and the next iteration's choice of update variable
  * (steep: h K_kk D > 1). Takes the evaluations from *budget; returns max |f|. */
-double law_sweep(const Chain &ch, bool *steep, double *f, double *v, double *D, int *budget) {
+rtb_real law_sweep(const Chain &ch, bool *steep, rtb_real *f, rtb_real *v, rtb_real *D, int *budget) {
   const int n = ch.n;
-  double fmax_abs = 0.0;
+  rtb_real fmax_abs = 0.0;
   if (!(ch.law.s > 0.0)) { /* eq. (1): one evaluation per cell */
     for (int k = 0; k < n; ++k) {
       if (steep[k]) f[k] = rtb_law_eval_v(&ch.law, v[k], &D[k]);
@@ -104,7 +104,7 @@ double law_sweep(const Chain &ch, bool *steep, double *f, double *v, double *D, 
   }
   for (int k = 0; k < n; ++k) {
     steep[k] = (k == 0 ? ch.hK0 : 2.0 * ch.hKr) * D[k] > 1.0;
-    const double a = fabs(f[k]);
+    const rtb_real a = fabs(f[k]);
     fmax_abs = a > fmax_abs ? a : fmax_abs;
   }
   return fmax_abs;
@@ -112,15 +112,15 @@ double law_sweep(const Chain &ch, bool *steep, double *f, double *v, double *D, 
 
 /* Newton step: (I + h K D) dl = -H, Thomas algorithm with one reciprocal per
  * row. Column k of h K D carries D[k]. Returns 0, or -1 on a zero pivot. */
-int newton_solve(const Chain &ch, const double *D, const double *H, double *dl) {
+int newton_solve(const Chain &ch, const rtb_real *D, const rtb_real *H, rtb_real *dl) {
   const int n = ch.n;
-  double w[RTB_MAX_CELLS];
-  double piv = 1.0 + ch.hK0 * D[0];
+  rtb_real w[RTB_MAX_CELLS];
+  rtb_real piv = 1.0 + ch.hK0 * D[0];
   if (!(piv != 0.0)) return -1;
-  double inv = 1.0 / piv;
+  rtb_real inv = 1.0 / piv;
   dl[0] = -H[0] * inv;
   for (int k = 1; k < n; ++k) {
-    const double lo = -ch.hKr * D[k - 1];
+    const rtb_real lo = -ch.hKr * D[k - 1];
     w[k] = -ch.hKr * D[k] * inv;       /* up[k-1] / piv[k-1] */
     piv = 1.0 + 2.0 * ch.hKr * D[k] - lo * w[k];
     if (!(piv != 0.0)) return -1;
@@ -134,13 +134,13 @@ int newton_solve(const Chain &ch, const double *D, const double *H, double *dl) 
 
 /* Pair (f, v), slopes D, residual H and the update choice of one iterate. */
 struct Iterate {
-  double f[RTB_MAX_CELLS], v[RTB_MAX_CELLS], D[RTB_MAX_CELLS], H[RTB_MAX_CELLS];
+  rtb_real f[RTB_MAX_CELLS], v[RTB_MAX_CELLS], D[RTB_MAX_CELLS], H[RTB_MAX_CELLS];
   bool steep[RTB_MAX_CELLS];
-  double fmax_abs, hnorm, h2;  /* max |f|, max |H|, |H|_2^2 */
+  rtb_real fmax_abs, hnorm, h2;  /* max |f|, max |H|, |H|_2^2 */
 };
 
 /* The law at v = v_guess (rest if NULL or unusable): a start on the curve. */
-void evaluated_start(const Chain &ch, const double *v_guess, const double *r, Iterate *x,
+void evaluated_start(const Chain &ch, const rtb_real *v_guess, const rtb_real *r, Iterate *x,
                      int *budget) {
   for (int attempt = v_guess ? 0 : 1; attempt < 2; ++attempt) {
     for (int k = 0; k < ch.n; ++k) {
@@ -149,14 +149,14 @@ void evaluated_start(const Chain &ch, const double *v_guess, const double *r, It
     }
     x->fmax_abs = law_sweep(ch, x->steep, x->f, x->v, x->D, budget);
     x->hnorm = residual(ch, x->f, x->v, r, x->H, &x->h2);
-    if (x->hnorm <= DBL_MAX) return;
+    if (x->hnorm <= RTB_REAL_MAX) return;
   }
 }
 
 }  // namespace
 
 extern "C" rtb_status rtb_stage_solve(const rtb_params *p, const rtb_settings *set,
-                                      const double *f0, const double *v0, const double *v_guess,
+                                      const rtb_real *f0, const rtb_real *v0, const rtb_real *v_guess,
                                       rtb_stage *st, int *budget) {
   Chain ch;
   ch.n = p->cells;
@@ -168,13 +168,13 @@ extern "C" rtb_status rtb_stage_solve(const rtb_params *p, const rtb_settings *s
   rtb_law_init(&ch.law, p->C0, p->alpha, p->smoothing);
   const int n = ch.n;
   if (n < 1 || n > RTB_MAX_CELLS) return RTB_ERR_STATE;
-  double r[RTB_MAX_CELLS], dl[RTB_MAX_CELLS];
+  rtb_real r[RTB_MAX_CELLS], dl[RTB_MAX_CELLS];
   Iterate bufs[2];
   Iterate *x = &bufs[0], *trial = &bufs[1];
 
   /* r = b - K c: the dashpot forces if no cell moved during the stage. */
   rtb_chain_apply(n, ch.Kpa, ch.Kr, st->c, r);
-  double rnorm = 0.0;
+  rtb_real rnorm = 0.0;
   for (int k = 0; k < n; ++k) {
     r[k] = (k == 0 ? st->b1 : 0.0) - r[k];
     rnorm = fabs(r[k]) > rnorm ? fabs(r[k]) : rnorm;
@@ -194,10 +194,10 @@ extern "C" rtb_status rtb_stage_solve(const rtb_params *p, const rtb_settings *s
       x->fmax_abs = fabs(f0[k]) > x->fmax_abs ? fabs(f0[k]) : x->fmax_abs;
     }
     x->hnorm = residual(ch, x->f, x->v, r, x->H, &x->h2);
-    free_start = x->hnorm <= DBL_MAX;
+    free_start = x->hnorm <= RTB_REAL_MAX;
   }
   if (!free_start) evaluated_start(ch, v_guess, r, x, budget);
-  if (!(x->hnorm <= DBL_MAX)) { /* from rest: f = v = 0 is finite whatever r is */
+  if (!(x->hnorm <= RTB_REAL_MAX)) { /* from rest: f = v = 0 is finite whatever r is */
     for (int k = 0; k < n; ++k) x->f[k] = x->v[k] = x->D[k] = 0.0, x->steep[k] = false;
     x->fmax_abs = 0.0;
     x->hnorm = residual(ch, x->f, x->v, r, x->H, &x->h2);
@@ -206,8 +206,8 @@ extern "C" rtb_status rtb_stage_solve(const rtb_params *p, const rtb_settings *s
   st->converged = 0;
   int it = 0;
   for (;; ++it) {
-    const double scale = x->fmax_abs > rnorm ? x->fmax_abs : rnorm;
-    if (x->hnorm <= set->tol * scale || x->hnorm <= DBL_MIN) { st->converged = 1; break; }
+    const rtb_real scale = x->fmax_abs > rnorm ? x->fmax_abs : rnorm;
+    if (x->hnorm <= set->tol * scale || x->hnorm <= RTB_REAL_MIN) { st->converged = 1; break; }
     if (it >= set->max_iter || *budget < n) break;
     if (newton_solve(ch, x->D, x->H, dl) != 0) break;
 
@@ -215,7 +215,7 @@ extern "C" rtb_status rtb_stage_solve(const rtb_params *p, const rtb_settings *s
      * pair on the dashpot curve with df/dt = df at t = 0, so dH/dt = J df = -H
      * and the Newton path is a descent direction: Armijo with slope -|H|^2.
      * (A single merit: alternating between two merits can cycle.) */
-    double t = 1.0;
+    rtb_real t = 1.0;
     bool accepted = false;
     for (int bt = 0; bt <= set->max_backtrack && *budget >= n; ++bt, t *= 0.5) {
       for (int k = 0; k < n; ++k) {
@@ -227,7 +227,7 @@ extern "C" rtb_status rtb_stage_solve(const rtb_params *p, const rtb_settings *s
       }
       trial->fmax_abs = law_sweep(ch, trial->steep, trial->f, trial->v, trial->D, budget);
       trial->hnorm = residual(ch, trial->f, trial->v, r, trial->H, &trial->h2);
-      if (!(trial->hnorm <= DBL_MAX) || trial->h2 > (1.0 - 2e-4 * t) * x->h2) continue;
+      if (!(trial->hnorm <= RTB_REAL_MAX) || trial->h2 > (1.0 - 2e-4 * t) * x->h2) continue;
       Iterate *tmp = x;
       x = trial;
       trial = tmp;
@@ -239,7 +239,7 @@ extern "C" rtb_status rtb_stage_solve(const rtb_params *p, const rtb_settings *s
        * the law evaluated at v_guess (one more sweep). */
       free_start = false;
       evaluated_start(ch, v_guess, r, x, budget);
-      if (!(x->hnorm <= DBL_MAX)) break;
+      if (!(x->hnorm <= RTB_REAL_MAX)) break;
       --it;
       continue;
     }

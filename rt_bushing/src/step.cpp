@@ -26,38 +26,38 @@ static rtb_status worse(rtb_status a, rtb_status b) {
  *         k_i = phi(b_i - K Y_i), b_1 at t_n + g dt (xb interpolated
  *         linearly), b_2 at t_{n+1}; L-stable and stiffly accurate. */
 extern "C" rtb_status rtb_chain_advance(const rtb_params *p, const rtb_settings *set,
-                                        const rtb_state *s, double xb_new, double dt,
+                                        const rtb_state *s, rtb_real xb_new, rtb_real dt,
                                         rtb_stage st[2], int *budget) {
   return rtb_chain_advance_from(p, set, s, xb_new, dt, NULL, NULL, st, budget);
 }
 
 extern "C" rtb_status rtb_chain_advance_from(const rtb_params *p, const rtb_settings *set,
-                                             const rtb_state *s, double xb_new, double dt,
-                                             const double *f1, const double *v1,
+                                             const rtb_state *s, rtb_real xb_new, rtb_real dt,
+                                             const rtb_real *f1, const rtb_real *v1,
                                              rtb_stage st[2], int *budget) {
   const int n = p->cells;
   /* Free start of the first stage: the last step's end, (f_n, v_n), with
    * f_n = b(t_n) - K y_n from eq. (2) (no law evaluation). Fallback start:
    * velocities extrapolated linearly in time from the last two step ends.
    * The converged result does not depend on either. */
-  double f_end[RTB_MAX_CELLS], guess[RTB_MAX_CELLS];
+  rtb_real f_end[RTB_MAX_CELLS], guess[RTB_MAX_CELLS];
   rtb_chain_apply(n, p->Kpa, p->Kr, s->y, f_end);
   for (int k = 0; k < n; ++k) f_end[k] = (k == 0 ? p->Kpa * s->xb : 0.0) - f_end[k];
   const int ns = rtb_integrator_stages(p);
-  const double lead = ns == 1 ? dt : RTB_SDIRK_GAMMA * dt;
-  const double w = s->dt_prev > 0.0 ? fmin(lead / s->dt_prev, 1.0) : 0.0;
+  const rtb_real lead = ns == 1 ? dt : RTB_SDIRK_GAMMA * dt;
+  const rtb_real w = s->dt_prev > 0.0 ? fmin(lead / s->dt_prev, 1.0) : 0.0;
   for (int k = 0; k < n; ++k) guess[k] = s->v[k] + w * (s->v[k] - s->v_prev[k]);
-  const double *fs = f1 && v1 ? f1 : f_end, *vs = f1 && v1 ? v1 : s->v;
+  const rtb_real *fs = f1 && v1 ? f1 : f_end, *vs = f1 && v1 ? v1 : s->v;
   if (ns == 1) {
     st[0].h = dt;
     st[0].b1 = p->Kpa * xb_new;
-    memcpy(st[0].c, s->y, sizeof(double) * n);
+    memcpy(st[0].c, s->y, sizeof(rtb_real) * n);
     return rtb_stage_solve(p, set, fs, vs, guess, &st[0], budget);
   }
-  const double g = RTB_SDIRK_GAMMA;
+  const rtb_real g = RTB_SDIRK_GAMMA;
   st[0].h = g * dt;
   st[0].b1 = p->Kpa * (s->xb + g * (xb_new - s->xb));
-  memcpy(st[0].c, s->y, sizeof(double) * n);
+  memcpy(st[0].c, s->y, sizeof(rtb_real) * n);
   rtb_status a = rtb_stage_solve(p, set, fs, vs, guess, &st[0], budget);
   if (a < 0) return a;
   st[1].h = g * dt;
@@ -72,13 +72,13 @@ extern "C" rtb_status rtb_chain_advance_from(const rtb_params *p, const rtb_sett
 }
 
 /* Tangent of one converged stage: (I + h D K) dy = dc + h D e1 db1. */
-static void stage_tangent(const rtb_params *p, const rtb_stage *st, const double *dc,
-                          double db1, double *dy) {
+static void stage_tangent(const rtb_params *p, const rtb_stage *st, const rtb_real *dc,
+                          rtb_real db1, rtb_real *dy) {
   const int n = p->cells;
   if (n < 1 || n > RTB_MAX_CELLS) return;
-  double lo[RTB_MAX_CELLS], di[RTB_MAX_CELLS], up[RTB_MAX_CELLS], work[RTB_MAX_CELLS];
+  rtb_real lo[RTB_MAX_CELLS], di[RTB_MAX_CELLS], up[RTB_MAX_CELLS], work[RTB_MAX_CELLS];
   for (int k = 0; k < n; ++k) {
-    const double D = st->D[k]; /* phi' at the stage's pair, from its last law sweep */
+    const rtb_real D = st->D[k]; /* phi' at the stage's pair, from its last law sweep */
     di[k] = 1.0 + st->h * D * rtb_chain_diag(k, p->Kpa, p->Kr);
     lo[k] = k > 0 ? -st->h * D * p->Kr : 0.0;
     up[k] = k + 1 < n ? -st->h * D * p->Kr : 0.0;
@@ -88,14 +88,14 @@ static void stage_tangent(const rtb_params *p, const rtb_stage *st, const double
 }
 
 /* d y1_new / d xb_new of the chain advance (RT). */
-static double chain_dy1_dxb(const rtb_params *p, const rtb_stage st[2], double dt) {
-  double dy[RTB_MAX_CELLS];
+static rtb_real chain_dy1_dxb(const rtb_params *p, const rtb_stage st[2], rtb_real dt) {
+  rtb_real dy[RTB_MAX_CELLS];
   if (rtb_integrator_stages(p) == 1) {
     stage_tangent(p, &st[0], NULL, p->Kpa, dy);
     return dy[0];
   }
-  const double g = RTB_SDIRK_GAMMA;
-  double dc[RTB_MAX_CELLS];
+  const rtb_real g = RTB_SDIRK_GAMMA;
+  rtb_real dc[RTB_MAX_CELLS];
   stage_tangent(p, &st[0], NULL, p->Kpa * g, dy);
   for (int k = 0; k < p->cells; ++k) dc[k] = (1.0 - g) / g * dy[k]; /* (1-g) dt dv1 */
   stage_tangent(p, &st[1], dc, p->Kpa, dy);
@@ -105,36 +105,36 @@ static double chain_dy1_dxb(const rtb_params *p, const rtb_stage st[2], double d
 
 /* Maxwell branch with xb linear over the step, integrated exactly:
  * tau z' = xb - z. Returns z_new; *dz = d z_new / d xb_new. */
-static double maxwell_update(const rtb_params *p, const rtb_state *s, double xb, double dt,
-                             double *dz) {
+static rtb_real maxwell_update(const rtb_params *p, const rtb_state *s, rtb_real xb, rtb_real dt,
+                             rtb_real *dz) {
     /* z evolves whenever tau is set, so d F / d maxwell_k is exact at k = 0. */
   if (!(p->maxwell_tau > 0.0)) { *dz = 0.0; return s->z_maxwell; }
-  const double tau = p->maxwell_tau;
-  const double one_minus_e = -expm1(-dt / tau);
-  const double slope = (xb - s->xb) / dt;
-  const double z = xb - slope * tau + (1.0 - one_minus_e) * (s->z_maxwell - s->xb + slope * tau);
+  const rtb_real tau = p->maxwell_tau;
+  const rtb_real one_minus_e = -expm1(-dt / tau);
+  const rtb_real slope = (xb - s->xb) / dt;
+  const rtb_real z = xb - slope * tau + (1.0 - one_minus_e) * (s->z_maxwell - s->xb + slope * tau);
   *dz = 1.0 - tau / dt * one_minus_e;
   return z;
 }
 
-extern "C" double rtb_bushing_force(const rtb_params *p, const rtb_state *s_old, double xb,
-                                    double y1, double z, double dt, double *dF_dxb) {
+extern "C" rtb_real rtb_bushing_force(const rtb_params *p, const rtb_state *s_old, rtb_real xb,
+                                    rtb_real y1, rtb_real z, rtb_real dt, rtb_real *dF_dxb) {
   /* Mullins: K0 softened by (1 - mu (1 - |xb|/xb_max)) below the prior max. */
-  const double ax = fabs(xb);
-  double eta = 1.0, deta = 0.0;
+  const rtb_real ax = fabs(xb);
+  rtb_real eta = 1.0, deta = 0.0;
   if (p->mullins > 0.0 && ax < s_old->xb_max) {
     eta = 1.0 - p->mullins * (1.0 - ax / s_old->xb_max);
     deta = p->mullins * (xb >= 0.0 ? 1.0 : -1.0) / s_old->xb_max;
   }
-  const double sgn = xb > 0.0 ? 1.0 : (xb < 0.0 ? -1.0 : 0.0);
+  const rtb_real sgn = xb > 0.0 ? 1.0 : (xb < 0.0 ? -1.0 : 0.0);
   /* Softening spring sat_force tanh(xb / sat_disp); its slope sat_force/sat_disp sech^2. */
-  double sat = 0.0, dsat = 0.0;
+  rtb_real sat = 0.0, dsat = 0.0;
   if (p->sat_disp > 0.0) {
-    const double th = tanh(xb / p->sat_disp);
+    const rtb_real th = tanh(xb / p->sat_disp);
     sat = p->sat_force * th;
     dsat = p->sat_force / p->sat_disp * (1.0 - th * th);
   }
-  const double F = sat + p->K0 * xb * eta          /* eq. (11): K0 y0 */
+  const rtb_real F = sat + p->K0 * xb * eta          /* eq. (11): K0 y0 */
                    + p->Kpa * (xb - y1)      /* eq. (11): Kpa (y0 - y1) */
                    + p->k3 * xb * xb * xb + p->k_asym * ax +
                    p->maxwell_k * (xb - z) + p->viscous_c * (xb - s_old->xb) / dt;
@@ -149,33 +149,33 @@ namespace {
 /* Response of the bushing (no inertia) to a bushing displacement xb. */
 struct Response {
   rtb_stage st[2];
-  double y[RTB_MAX_CELLS];
-  double z, F, dF;  /* force and total dF/dxb */
+  rtb_real y[RTB_MAX_CELLS];
+  rtb_real z, F, dF;  /* force and total dF/dxb */
   int iterations;
   rtb_status status;
 };
 
 /* warm: r holds an earlier response of this step (the clearance search);
  * its first stage starts the new one (closer than the last step's end). */
-void respond(const rtb_state *s, const rtb_params *p, const rtb_settings *set, double xb,
-             double dt, bool tangent, int *budget, Response *r, bool warm = false) {
+void respond(const rtb_state *s, const rtb_params *p, const rtb_settings *set, rtb_real xb,
+             rtb_real dt, bool tangent, int *budget, Response *r, bool warm = false) {
   const int n = p->cells;
-  double dy1 = 0.0;
+  rtb_real dy1 = 0.0;
   if (p->model == RTB_MODEL_RT) {
     const bool hint = warm && r->status >= 0;
     r->status = rtb_chain_advance_from(p, set, s, xb, dt, hint ? r->st[0].f : NULL,
                                        hint ? r->st[0].v : NULL, r->st, budget);
     const int ns = rtb_integrator_stages(p);
-    memcpy(r->y, r->st[ns - 1].y, sizeof(double) * n);
+    memcpy(r->y, r->st[ns - 1].y, sizeof(rtb_real) * n);
     r->iterations = r->st[0].iterations + (ns == 2 ? r->st[1].iterations : 0);
     if (tangent && r->status >= 0) dy1 = chain_dy1_dxb(p, r->st, dt);
   } else {
     r->status = rtb_sts_solve(p, s->y, xb, r->y, &r->iterations, tangent ? &dy1 : NULL);
     *budget -= n; /* no law: one unit per cell and solve bounds the clearance loop */
   }
-  double dz;
+  rtb_real dz;
   r->z = maxwell_update(p, s, xb, dt, &dz);
-  double dF_fixed;
+  rtb_real dF_fixed;
   r->F = rtb_bushing_force(p, s, xb, r->y[0], r->z, dt, &dF_fixed);
   /* dF_fixed holds y1 and z fixed; add their own dependence on xb. */
   r->dF = dF_fixed - p->Kpa * dy1 - p->maxwell_k * dz;
@@ -193,10 +193,10 @@ void respond(const rtb_state *s, const rtb_params *p, const rtb_settings *set, d
  * budget ended the search before F(xb) = 0 was met. */
 #define RTB_BACKLASH_ITERS 30
 static rtb_status resolve_backlash(const rtb_state *s, const rtb_params *p,
-                                   const rtb_settings *set, double x, double dt, int *budget,
-                                   Response *r, double *xb_out, int *contact) {
-  const double lo = x - 0.5 * p->backlash, hi = x + 0.5 * p->backlash;
-  double xb = fmin(fmax(s->xb, lo), hi);
+                                   const rtb_settings *set, rtb_real x, rtb_real dt, int *budget,
+                                   Response *r, rtb_real *xb_out, int *contact) {
+  const rtb_real lo = x - 0.5 * p->backlash, hi = x + 0.5 * p->backlash;
+  rtb_real xb = fmin(fmax(s->xb, lo), hi);
   respond(s, p, set, xb, dt, true, budget, r);
   *contact = 1;
   if (r->status < 0) { *xb_out = xb; return RTB_OK; }
@@ -207,7 +207,7 @@ static rtb_status resolve_backlash(const rtb_state *s, const rtb_params *p,
   }
   *xb_out = xb;
   if (*budget < p->cells) return RTB_NOT_CONVERGED;
-  double a = lo, b = hi;
+  rtb_real a = lo, b = hi;
   if (r->F > 0.0) {
     b = xb;
     respond(s, p, set, lo, dt, true, budget, r, true);
@@ -220,7 +220,7 @@ static rtb_status resolve_backlash(const rtb_state *s, const rtb_params *p,
     if (r->status < 0 || r->F <= 0.0) return RTB_OK;
   }
   *contact = 0;
-  double scale = fabs(p->K0) + p->Kpa;
+  rtb_real scale = fabs(p->K0) + p->Kpa;
   xb = 0.5 * (a + b);
   for (int it = 0; it < RTB_BACKLASH_ITERS; ++it) {
     if (*budget < p->cells) return RTB_NOT_CONVERGED; /* r is the last response: at *xb_out */
@@ -228,15 +228,15 @@ static rtb_status resolve_backlash(const rtb_state *s, const rtb_params *p,
     *xb_out = xb;
     if (r->status < 0) break;
     if (r->F > 0.0) b = xb; else a = xb;
-    if (fabs(r->F) <= set->tol * scale * (fabs(xb) + p->backlash) || b - a <= 4 * DBL_EPSILON * fabs(xb))
+    if (fabs(r->F) <= set->tol * scale * (fabs(xb) + p->backlash) || b - a <= 4 * RTB_REAL_EPSILON * fabs(xb))
       break;
-    double nx = xb - r->F / r->dF;
+    rtb_real nx = xb - r->F / r->dF;
     xb = (r->dF > 0.0 && nx > a && nx < b) ? nx : 0.5 * (a + b);
   }
   return RTB_OK;
 }
 
-static rtb_status check_call(const rtb_state *s, const rtb_params *p, double x, double dt) {
+static rtb_status check_call(const rtb_state *s, const rtb_params *p, rtb_real x, rtb_real dt) {
   if (!s || !p) return RTB_ERR_NULL;
   rtb_status v = rtb_params_validate(p);
   if (v != RTB_OK) return v;
@@ -249,8 +249,8 @@ static rtb_status check_call(const rtb_state *s, const rtb_params *p, double x, 
 }
 
 extern "C" rtb_status rtb_step_detailed(const rtb_state *s, const rtb_params *p,
-                                        const rtb_settings *set_in, double x, double dt,
-                                        rtb_state *out, double *force, double *dforce_dx,
+                                        const rtb_settings *set_in, rtb_real x, rtb_real dt,
+                                        rtb_state *out, rtb_real *force, rtb_real *dforce_dx,
                                         rtb_stage stages[2]) {
   rtb_status st = check_call(s, p, x, dt);
   if (st != RTB_OK) return st;
@@ -259,7 +259,7 @@ extern "C" rtb_status rtb_step_detailed(const rtb_state *s, const rtb_params *p,
   if (st != RTB_OK) return st;
 
   Response r;
-  double xb = x;
+  rtb_real xb = x;
   int contact = 1;
   int budget = RTB_STEP_WORK(p->cells);
   rtb_status clearance = RTB_OK;
@@ -271,9 +271,9 @@ extern "C" rtb_status rtb_step_detailed(const rtb_state *s, const rtb_params *p,
 
 
   /* Inertia of the load path: F += m a with backward differences of x. */
-  const double vx = (x - s->x) / dt;
-  const double F = r.F + p->mass * (vx - s->vx) / dt;
-  const double dF = (contact ? r.dF : 0.0) + p->mass / (dt * dt);
+  const rtb_real vx = (x - s->x) / dt;
+  const rtb_real F = r.F + p->mass * (vx - s->vx) / dt;
+  const rtb_real dF = (contact ? r.dF : 0.0) + p->mass / (dt * dt);
   if (!isfinite(F) || !isfinite(dF)) return RTB_ERR_OVERFLOW;
 
   const int n = p->cells;
@@ -282,11 +282,11 @@ extern "C" rtb_status rtb_step_detailed(const rtb_state *s, const rtb_params *p,
   next.xb = xb;
   next.force = F;
   next.time = s->time + dt;
-  memcpy(next.y, r.y, sizeof(double) * n);
+  memcpy(next.y, r.y, sizeof(rtb_real) * n);
   if (p->model == RTB_MODEL_RT) {
     const rtb_stage &last = r.st[rtb_integrator_stages(p) - 1];
-    memcpy(next.v_prev, s->v, sizeof(double) * n);
-    memcpy(next.v, last.v, sizeof(double) * n);
+    memcpy(next.v_prev, s->v, sizeof(rtb_real) * n);
+    memcpy(next.v, last.v, sizeof(rtb_real) * n);
     next.dt_prev = dt;
   }
   next.z_maxwell = r.z;
@@ -317,7 +317,7 @@ extern "C" rtb_status rtb_state_init(rtb_state *s, const rtb_params *p, rtb_real
   t.initialised = 1;
   t.x = t.xb = x0;
   /* Relaxed equilibrium: K y = b (every dashpot/friction force zero). */
-  double work[RTB_MAX_CELLS];
+  rtb_real work[RTB_MAX_CELLS];
   for (int k = 0; k < p->cells; ++k) t.y[k] = k == 0 ? p->Kpa * x0 : 0.0;
   rtb_chain_solve(p->cells, p->Kpa, p->Kr, t.y, work);
   t.z_maxwell = x0;

@@ -14,14 +14,14 @@
 #include "tridiagonal.h"
 #include "no_heap.h"
 
-extern "C" rtb_status rtb_sts_solve(const rtb_params *p, const double *y_old,
-                                    double xb_new, double *y_new, int *iterations,
-                                    double *dy1_dxb) {
+extern "C" rtb_status rtb_sts_solve(const rtb_params *p, const rtb_real *y_old,
+                                    rtb_real xb_new, rtb_real *y_new, int *iterations,
+                                    rtb_real *dy1_dxb) {
   const int n = p->cells;
   if (n < 1 || n > RTB_MAX_CELLS) return RTB_ERR_STATE;
-  const double Kpa = p->Kpa, Kr = p->Kr, Ff = p->Ff;
-  double f[RTB_MAX_CELLS], lo[RTB_MAX_CELLS], di[RTB_MAX_CELLS], up[RTB_MAX_CELLS];
-  double rhs[RTB_MAX_CELLS], work[RTB_MAX_CELLS];
+  const rtb_real Kpa = p->Kpa, Kr = p->Kr, Ff = p->Ff;
+  rtb_real f[RTB_MAX_CELLS], lo[RTB_MAX_CELLS], di[RTB_MAX_CELLS], up[RTB_MAX_CELLS];
+  rtb_real rhs[RTB_MAX_CELLS], work[RTB_MAX_CELLS];
   int act[RTB_MAX_CELLS]; /* -1 sliding down, 0 stuck, +1 sliding up */
 
   /* Elastic trial: nothing slides. */
@@ -30,7 +30,7 @@ extern "C" rtb_status rtb_sts_solve(const rtb_params *p, const double *y_old,
     f[k] = (k == 0 ? Kpa * xb_new : 0.0) - f[k];
     act[k] = f[k] > Ff ? 1 : (f[k] < -Ff ? -1 : 0);
   }
-  const double tie = 1e-13 * Ff;
+  const rtb_real tie = RTB_STS_TIE_REL * Ff;
   for (int it = 0; it <= 2 * n + 4; ++it) {
     /* Solve with the current active set: stuck DOFs keep y_old, sliding DOFs
      * carry exactly +-Ff. */
@@ -50,7 +50,7 @@ extern "C" rtb_status rtb_sts_solve(const rtb_params *p, const double *y_old,
     for (int k = 0; k < n; ++k) {
       f[k] = (k == 0 ? Kpa * xb_new : 0.0) - f[k];
       /* Complementarity function: friction force plus scaled slip. */
-      const double g = (act[k] == 0 ? f[k] : act[k] * Ff) +
+      const rtb_real g = (act[k] == 0 ? f[k] : act[k] * Ff) +
                        rtb_chain_diag(k, Kpa, Kr) * (rhs[k] - y_old[k]);
       const int a = g > Ff + tie ? 1 : (g < -Ff - tie ? -1 : 0);
       if (a != act[k]) { same = false; act[k] = a; }

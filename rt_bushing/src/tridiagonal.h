@@ -8,15 +8,15 @@
 #ifndef RTB_TRIDIAGONAL_H
 #define RTB_TRIDIAGONAL_H
 
-#include "../rt_bushing.h"
+#include "rtb_scalar.h"
 
 /* Solve A x = rhs, A with sub-diagonal lo[1..n-1], diagonal di[0..n-1] and
  * super-diagonal up[0..n-2]. rhs is overwritten by x. work has n entries.
  * Returns 0, or -1 on a zero pivot. */
-static inline int rtb_tridiag_solve(int n, const double *lo, const double *di,
-                                    const double *up, double *rhs, double *work) {
+static inline int rtb_tridiag_solve(int n, const rtb_real *lo, const rtb_real *di,
+                                    const rtb_real *up, rtb_real *rhs, rtb_real *work) {
   if (n < 1) return -1;
-  double piv = di[0];
+  rtb_real piv = di[0];
   if (piv == 0.0) return -1;
   rhs[0] /= piv;
   for (int k = 1; k < n; ++k) {
@@ -32,14 +32,14 @@ static inline int rtb_tridiag_solve(int n, const double *lo, const double *di,
 /* Diagonal of the chain stiffness K of eq. (2): Kpa+Kr for the first DOF,
  * 2 Kr for the others (the last cell's spring ties to ground). Off-diagonals
  * are -Kr. */
-static inline double rtb_chain_diag(int k, double Kpa, double Kr) {
+static inline rtb_real rtb_chain_diag(int k, rtb_real Kpa, rtb_real Kr) {
   return k == 0 ? Kpa + Kr : 2.0 * Kr;
 }
 
 /* out = K u for the chain stiffness. */
-static inline void rtb_chain_apply(int n, double Kpa, double Kr, const double *u, double *out) {
+static inline void rtb_chain_apply(int n, rtb_real Kpa, rtb_real Kr, const rtb_real *u, rtb_real *out) {
   for (int k = 0; k < n; ++k) {
-    double s = rtb_chain_diag(k, Kpa, Kr) * u[k];
+    rtb_real s = rtb_chain_diag(k, Kpa, Kr) * u[k];
     if (k > 0) s -= Kr * u[k - 1];
     if (k + 1 < n) s -= Kr * u[k + 1];
     out[k] = s;
@@ -47,9 +47,9 @@ static inline void rtb_chain_apply(int n, double Kpa, double Kr, const double *u
 }
 
 /* Solve K x = rhs in place (K symmetric positive definite). */
-static inline int rtb_chain_solve(int n, double Kpa, double Kr, double *rhs, double *work) {
+static inline int rtb_chain_solve(int n, rtb_real Kpa, rtb_real Kr, rtb_real *rhs, rtb_real *work) {
   if (n < 1 || n > RTB_MAX_CELLS) return -1;
-  double lo[RTB_MAX_CELLS], di[RTB_MAX_CELLS], up[RTB_MAX_CELLS];
+  rtb_real lo[RTB_MAX_CELLS], di[RTB_MAX_CELLS], up[RTB_MAX_CELLS];
   for (int k = 0; k < n; ++k) {
     di[k] = rtb_chain_diag(k, Kpa, Kr);
     lo[k] = -Kr;
