@@ -205,11 +205,32 @@ extern "C" rtb_status rtb_stage_solve(const rtb_params *p, const rtb_settings *s
 
   st->converged = 0;
   int it = 0;
+  rtb_real prev_hnorm = 0.0; /* |H| before the last full (t = 1) step; 0: none yet */
   for (;; ++it) {
     const rtb_real scale = x->fmax_abs > rnorm ? x->fmax_abs : rnorm;
     if (x->hnorm <= set->tol * scale || x->hnorm <= RTB_REAL_MIN) { st->converged = 1; break; }
     if (it >= set->max_iter || *budget < n) break;
     if (newton_solve(ch, x->D, x->H, dl) != 0) break;
+
+    /* Last step without a law sweep: in the quadratic phase |H_next| ~
+     * |H|^3 / |H_prev|^2 (|H_k+1| = c |H_k|^2, c estimated from the last full
+     * step). When that is 100x below the tolerance, the linearised update
+     * (f + df, v + D df) is the converged pair to within it, and the sweep
+     * that would only confirm it is skipped (a third of the sweeps on the
+     * 1 kHz benchmark input). D stays at the previous pair: the tangent
+     * and the offline adjoint see a slope off by O(|df|/|f|) ~ tol. */
+    if (prev_hnorm > 0.0 && x->hnorm < 1e-3 * prev_hnorm) {
+      const rtb_real ratio = x->hnorm / prev_hnorm;
+      if (x->hnorm * ratio * ratio <= 0.01 * set->tol * scale) {
+        for (int k = 0; k < n; ++k) {
+          x->v[k] += x->D[k] * dl[k];
+          x->f[k] += dl[k];
+        }
+        st->converged = 1;
+        ++it;
+        break;
+      }
+    }
 
     /* Line search on the merit 1/2 |H|_2^2. Both update rules leave the
      * pair on the dashpot curve with df/dt = df at t = 0, so dH/dt = J df = -H
@@ -228,6 +249,7 @@ extern "C" rtb_status rtb_stage_solve(const rtb_params *p, const rtb_settings *s
       trial->fmax_abs = law_sweep(ch, trial->steep, trial->f, trial->v, trial->D, budget);
       trial->hnorm = residual(ch, trial->f, trial->v, r, trial->H, &trial->h2);
       if (!(trial->hnorm <= RTB_REAL_MAX) || trial->h2 > (1.0 - 2e-4 * t) * x->h2) continue;
+      prev_hnorm = t == 1.0 ? x->hnorm : 0.0;
       Iterate *tmp = x;
       x = trial;
       trial = tmp;
