@@ -134,15 +134,18 @@ typedef struct rtb_params {
 } rtb_params;
 
 /* Hard work bound per step (issue #11). Every rtb_step / rtb_evaluate spends
- * at most RTB_STEP_WORK(N) dashpot-law evaluations, all extensions included:
- * the Newton sweeps of both SDIRK2 stages (N evaluations each), each psi_s
- * evaluation of the eq. (14) smoothed inverse, every response of the
- * clearance search (an STS response counts N). A sweep or a clearance
- * response starts only while N evaluations are left; when the budget runs
- * out the step commits its best iterate and returns RTB_NOT_CONVERGED. A
- * typical 1 kHz step uses 2 to 4 sweeps (docs/benchmarks.md). */
-#define RTB_STEP_SWEEPS 64
-#define RTB_STEP_WORK(cells) (RTB_STEP_SWEEPS * (cells))
+ * at most RTB_STEP_WORK units of dashpot-law evaluations, whatever N, the
+ * extensions, smoothing or clearance: one unit per eq. (1) evaluation (one
+ * exp, one log), 3 per smoothed eq. (14) evaluation (each inverse iteration
+ * included), N per STS response. A Newton sweep costs N evaluations, a
+ * clearance response one or more sweeps; each starts only while a whole
+ * sweep is left. When the budget runs out the step commits its best iterate
+ * and returns RTB_NOT_CONVERGED. A 1 kHz step at N = 15 uses 4 to 5 sweeps
+ * (~70 units); 1024 allows 68 sweeps at N = 15, 32 at N = 32, and bounds
+ * the step at about 30 us on the benchmark machine (docs/benchmarks.md). */
+#ifndef RTB_STEP_WORK
+#define RTB_STEP_WORK 1024
+#endif
 
 /* Numerical settings of the implicit solve. NULL means rtb_settings_default. */
 typedef struct rtb_settings {

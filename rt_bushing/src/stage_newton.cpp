@@ -30,10 +30,10 @@
  * variable switch is unchanged; force-updated DOFs invert psi_s by the
  * bounded safeguarded scalar Newton of dashpot_law.h.
  *
- * Work is bounded by the step's budget of law evaluations (*budget,
- * rt_bushing.h RTB_STEP_WORK): a sweep starts only if the budget still holds
- * one evaluation per cell, and every evaluation (each psi_s evaluation of the
- * smoothed inverse included) is taken from it. When it runs out the last
+ * Work is bounded by the step's budget (*budget, rt_bushing.h
+ * RTB_STEP_WORK): a sweep starts only if the budget still holds one
+ * evaluation per cell, and every evaluation (each psi_s evaluation of the
+ * smoothed inverse included, at RTB_SLAW_UNIT units) is taken from it. When it runs out the last
  * accepted iterate is kept and RTB_NOT_CONVERGED returned.
  */
 #include <float.h>
@@ -51,6 +51,8 @@ struct Chain {
   rtb_real Kpa, Kr, h;
   rtb_real hKr, hK0;   /* h Kr and h (Kpa + Kr): the Newton matrix's entries */
   rtb_law law;       /* eq. (1) / (14) with its constants hoisted */
+  int unit;          /* work units of one law evaluation (RTB_STEP_WORK) */
+  int sweep;         /* ... of a sweep over all cells: n * unit */
 };
 
 /* H = f + h K v - r; returns the max-norm (and the squared 2-norm in *sq),
@@ -92,13 +94,13 @@ rtb_real law_sweep(const Chain &ch, bool *steep, rtb_real *f, rtb_real *v, rtb_r
     for (int k = 0; k < n; ++k) {
       if (steep[k]) {
         f[k] = rtb_law_eval_v(&ch.law, v[k], &D[k]);
-        *budget -= 1;
+        *budget -= ch.unit;
       } else {
         /* v[k] holds the tangent prediction: the smoothed inverse's warm
          * start. Leave one evaluation for each cell still to come. */
-        int cap = *budget - (n - 1 - k);
+        int cap = (*budget - ch.unit * (n - 1 - k)) / ch.unit;
         v[k] = rtb_law_eval_f(&ch.law, f[k], v[k], &D[k], &cap);
-        *budget -= cap;
+        *budget -= ch.unit * cap;
       }
     }
   }
@@ -166,6 +168,8 @@ extern "C" rtb_status rtb_stage_solve(const rtb_params *p, const rtb_settings *s
   ch.hKr = st->h * p->Kr;
   ch.hK0 = st->h * (p->Kpa + p->Kr);
   rtb_law_init(&ch.law, p->C0, p->alpha, p->smoothing);
+  ch.unit = rtb_law_unit(p);
+  ch.sweep = ch.n * ch.unit;
   const int n = ch.n;
   if (n < 1 || n > RTB_MAX_CELLS) return RTB_ERR_STATE;
   rtb_real r[RTB_MAX_CELLS], dl[RTB_MAX_CELLS];
@@ -189,7 +193,7 @@ extern "C" rtb_status rtb_stage_solve(const rtb_params *p, const rtb_settings *s
       x->f[k] = f0[k];
       x->v[k] = v0[k];
       x->D[k] = rtb_law_dvdf_pair(&ch.law, f0[k], v0[k], &evals);
-      *budget -= evals;
+      *budget -= evals * ch.unit;
       x->steep[k] = (k == 0 ? ch.hK0 : 2.0 * ch.hKr) * x->D[k] > 1.0;
       x->fmax_abs = fabs(f0[k]) > x->fmax_abs ? fabs(f0[k]) : x->fmax_abs;
     }
@@ -209,7 +213,7 @@ extern "C" rtb_status rtb_stage_solve(const rtb_params *p, const rtb_settings *s
   for (;; ++it) {
     const rtb_real scale = x->fmax_abs > rnorm ? x->fmax_abs : rnorm;
     if (x->hnorm <= set->tol * scale || x->hnorm <= RTB_REAL_MIN) { st->converged = 1; break; }
-    if (it >= set->max_iter || *budget < n) break;
+    if (it >= set->max_iter || *budget < ch.sweep) break;
     if (newton_solve(ch, x->D, x->H, dl) != 0) break;
 
     /* Last step without a law sweep: in the quadratic phase |H_next| ~
@@ -238,7 +242,7 @@ extern "C" rtb_status rtb_stage_solve(const rtb_params *p, const rtb_settings *s
      * (A single merit: alternating between two merits can cycle.) */
     rtb_real t = 1.0;
     bool accepted = false;
-    for (int bt = 0; bt <= set->max_backtrack && *budget >= n; ++bt, t *= 0.5) {
+    for (int bt = 0; bt <= set->max_backtrack && *budget >= ch.sweep; ++bt, t *= 0.5) {
       for (int k = 0; k < n; ++k) {
         /* steep: v moves, f = psi(v); else f moves, v = phi(f) warm-started
          * at the tangent prediction. */
@@ -256,7 +260,7 @@ extern "C" rtb_status rtb_stage_solve(const rtb_params *p, const rtb_settings *s
       accepted = true;
       break;
     }
-    if (!accepted && it == 0 && free_start && *budget >= n) {
+    if (!accepted && it == 0 && free_start && *budget >= ch.sweep) {
       /* The free pair was too far off the curve for a descent: restart from
        * the law evaluated at v_guess (one more sweep). */
       free_start = false;

@@ -206,7 +206,7 @@ static rtb_status resolve_backlash(const rtb_state *s, const rtb_params *p,
     return RTB_OK;
   }
   *xb_out = xb;
-  if (*budget < p->cells) return RTB_NOT_CONVERGED;
+  if (*budget < p->cells * rtb_law_unit(p)) return RTB_NOT_CONVERGED;
   rtb_real a = lo, b = hi;
   if (r->F > 0.0) {
     b = xb;
@@ -223,7 +223,7 @@ static rtb_status resolve_backlash(const rtb_state *s, const rtb_params *p,
   rtb_real scale = fabs(p->K0) + p->Kpa;
   xb = 0.5 * (a + b);
   for (int it = 0; it < RTB_BACKLASH_ITERS; ++it) {
-    if (*budget < p->cells) return RTB_NOT_CONVERGED; /* r is the last response: at *xb_out */
+    if (*budget < p->cells * rtb_law_unit(p)) return RTB_NOT_CONVERGED; /* r: at *xb_out */
     respond(s, p, set, xb, dt, true, budget, r, true);
     *xb_out = xb;
     if (r->status < 0) break;
@@ -261,7 +261,7 @@ extern "C" rtb_status rtb_step_detailed(const rtb_state *s, const rtb_params *p,
   Response r;
   rtb_real xb = x;
   int contact = 1;
-  int budget = RTB_STEP_WORK(p->cells);
+  int budget = RTB_STEP_WORK;
   rtb_status clearance = RTB_OK;
   if (p->backlash > 0.0)
     clearance = resolve_backlash(s, p, &set, x, dt, &budget, &r, &xb, &contact);
