@@ -141,10 +141,12 @@ typedef struct rtb_params {
  * clearance response one or more sweeps; each starts only while a whole
  * sweep is left. When the budget runs out the step commits its best iterate
  * and returns RTB_NOT_CONVERGED. A 1 kHz step at N = 15 uses 4 to 5 sweeps
- * (~70 units); 1024 allows 68 sweeps at N = 15, 32 at N = 32, and bounds
- * the step at about 30 us on the benchmark machine (docs/benchmarks.md). */
+ * (~70 units); with every extension, smoothing and a clearance ~1000-2000.
+ * The default bounds a step at ~110 us on the benchmark machine; building
+ * the library with -DRTB_STEP_WORK=1024 bounds it at ~35 us, at the price of
+ * more RTB_NOT_CONVERGED steps on hard configurations (docs/benchmarks.md). */
 #ifndef RTB_STEP_WORK
-#define RTB_STEP_WORK 1024
+#define RTB_STEP_WORK 4096
 #endif
 
 /* Numerical settings of the implicit solve. NULL means rtb_settings_default. */
