@@ -17,6 +17,13 @@
 
 #include "rtb_scalar.h"
 
+/* Dashpot level with the friction asymmetry a = rtb_params.fric_asym:
+ * C0 (1 + a) where the cell moves (and pushes) positively, C0 (1 - a)
+ * negatively. `sign_of` is the cell velocity or force (same sign); at 0 the
+ * law gives 0 whatever the level. d level / d a = +-C0. */
+static inline rtb_real rtb_dashpot_level(rtb_real C0, rtb_real a, rtb_real sign_of) {
+  return sign_of < 0.0 ? C0 * (1.0 - a) : C0 * (1.0 + a);
+}
 
 /* psi(v), eq. (1). */
 static inline rtb_real rtb_law_force(rtb_real v, rtb_real C0, rtb_real alpha) {
@@ -234,15 +241,22 @@ static inline rtb_real rtb_dashpot_dv_dalpha(rtb_real f, rtb_real v, rtb_real C0
  * rounding (phi uses the reciprocal of C0 instead of a division by it).
  */
 typedef struct rtb_law {
-  rtb_real C0, alpha, s;      /* s: eq. (14) smoothing, 0 = exact eq. (1) */
-  rtb_real inv_C0, inv_alpha;
+  rtb_real C0, alpha, s;    /* s: eq. (14) smoothing, 0 = exact eq. (1) */
+  rtb_real asym;            /* fric_asym: level C0 (1 +- asym) by the sign */
+  rtb_real C0p, C0m;        /* the two levels, C0 (1 + asym) and C0 (1 - asym) */
+  rtb_real inv_C0p, inv_C0m, inv_alpha;
 } rtb_law;
 
-static inline void rtb_law_init(rtb_law *L, rtb_real C0, rtb_real alpha, rtb_real s) {
+static inline void rtb_law_init(rtb_law *L, rtb_real C0, rtb_real alpha, rtb_real s,
+                                rtb_real asym) {
   L->C0 = C0;
   L->alpha = alpha;
   L->s = s;
-  L->inv_C0 = 1.0 / C0;
+  L->asym = asym;
+  L->C0p = rtb_dashpot_level(C0, asym, 1.0);
+  L->C0m = rtb_dashpot_level(C0, asym, -1.0);
+  L->inv_C0p = 1.0 / L->C0p;
+  L->inv_C0m = 1.0 / L->C0m;
   L->inv_alpha = 1.0 / alpha;
 }
 
@@ -250,14 +264,14 @@ static inline void rtb_law_init(rtb_law *L, rtb_real C0, rtb_real alpha, rtb_rea
 static inline rtb_real rtb_law_eval_v(const rtb_law *L, rtb_real v, rtb_real *D) {
   if (L->s > 0.0) {
     rtb_real d;
-    const rtb_real f = rtb_slaw_force(v, L->C0, L->alpha, L->s, &d);
+    const rtb_real f = rtb_slaw_force(v, v < 0.0 ? L->C0m : L->C0p, L->alpha, L->s, &d);
     const rtb_real Dv = 1.0 / d;
     *D = Dv <= RTB_REAL_MAX ? Dv : RTB_REAL_MAX;
     return f;
   }
   const rtb_real a = fabs(v);
   if (a == 0.0) { *D = 0.0; return 0.0; }
-  const rtb_real m = L->C0 * exp(L->alpha * log(a));  /* eq. (1) */
+  const rtb_real m = (v < 0.0 ? L->C0m : L->C0p) * exp(L->alpha * log(a));  /* eq. (1) */
   *D = m > 0.0 ? a / (L->alpha * m) : 0.0;          /* phi' = v / (alpha f) */
   return v > 0.0 ? m : -m;
 }
@@ -266,7 +280,7 @@ static inline rtb_real rtb_law_eval_v(const rtb_law *L, rtb_real v, rtb_real *D)
 static inline rtb_real rtb_law_eval_pow_f(const rtb_law *L, rtb_real f, rtb_real *D) {
   const rtb_real a = fabs(f);
   if (a == 0.0) { *D = 0.0; return 0.0; }
-  const rtb_real m = exp(log(a * L->inv_C0) * L->inv_alpha); /* inverse of eq. (1) */
+  const rtb_real m = exp(log(a * (f < 0.0 ? L->inv_C0m : L->inv_C0p)) * L->inv_alpha); /* inverse of eq. (1) */
   *D = m > 0.0 ? m / (L->alpha * a) : 0.0;
   return f > 0.0 ? m : -m;
 }
@@ -278,7 +292,8 @@ static inline rtb_real rtb_law_eval_f(const rtb_law *L, rtb_real f, rtb_real gue
                                     int *cap) {
   if (L->s > 0.0) {
     const int max_evals = *cap < 1 ? 1 : (*cap < RTB_SLAW_INV_ITERS ? *cap : RTB_SLAW_INV_ITERS);
-    return rtb_slaw_velocity_n(f, L->C0, L->alpha, L->s, guess, max_evals, cap, D);
+    return rtb_slaw_velocity_n(f, f < 0.0 ? L->C0m : L->C0p, L->alpha, L->s, guess, max_evals,
+                               cap, D);
   }
   *cap = 1;
   return rtb_law_eval_pow_f(L, f, D);
@@ -289,7 +304,7 @@ static inline rtb_real rtb_law_eval_f(const rtb_law *L, rtb_real f, rtb_real gue
 static inline rtb_real rtb_law_dvdf_pair(const rtb_law *L, rtb_real f, rtb_real v, int *evals) {
   if (!(L->s > 0.0)) { *evals = 0; return rtb_law_dvdf(f, v, L->alpha); }
   *evals = 1;
-  return rtb_dashpot_dvdf(f, v, L->C0, L->alpha, L->s);
+  return rtb_dashpot_dvdf(f, v, f < 0.0 ? L->C0m : L->C0p, L->alpha, L->s);
 }
 
 #endif

@@ -69,11 +69,6 @@ rtb_status rtb_chain_advance_from(const rtb_params *p, const rtb_settings *set,
 rtb_status rtb_sts_solve(const rtb_params *p, const rtb_real *y_old, rtb_real xb_new,
                          rtb_real *y_new, int *iterations, rtb_real *dy1_dxb);
 
-/* Force of the bushing (without inertia) for its displacement xb and DOF y1,
- * eq. (11) plus the elastic/viscous extensions; also dF/dxb at fixed y1. */
-rtb_real rtb_bushing_force(const rtb_params *p, const rtb_state *s_old, rtb_real xb,
-                         rtb_real y1, rtb_real z_maxwell, rtb_real dt, rtb_real *dF_dxb);
-
 /* The full step with all internals exposed; rtb_evaluate is a thin wrapper.
  * `stages` may be NULL. */
 rtb_status rtb_step_detailed(const rtb_state *s, const rtb_params *p,

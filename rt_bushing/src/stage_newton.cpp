@@ -167,7 +167,7 @@ extern "C" rtb_status rtb_stage_solve(const rtb_params *p, const rtb_settings *s
   ch.h = st->h;
   ch.hKr = st->h * p->Kr;
   ch.hK0 = st->h * (p->Kpa + p->Kr);
-  rtb_law_init(&ch.law, p->C0, p->alpha, p->smoothing);
+  rtb_law_init(&ch.law, p->C0, p->alpha, p->smoothing, p->fric_asym);
   ch.unit = rtb_law_unit(p);
   ch.sweep = ch.n * ch.unit;
   const int n = ch.n;

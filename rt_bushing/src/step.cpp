@@ -6,6 +6,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "bushing_force.h"
 #include "dashpot_law.h"
 #include "rtb_internal.h"
 #include "tridiagonal.h"
@@ -103,62 +104,25 @@ static rtb_real chain_dy1_dxb(const rtb_params *p, const rtb_stage st[2], rtb_re
   return dy[0];
 }
 
-/* Maxwell branch with xb linear over the step, integrated exactly:
- * tau z' = xb - z. Returns z_new; *dz = d z_new / d xb_new. */
-static rtb_real maxwell_update(const rtb_params *p, const rtb_state *s, rtb_real xb, rtb_real dt,
-                             rtb_real *dz) {
-    /* z evolves whenever tau is set, so d F / d maxwell_k is exact at k = 0. */
-  if (!(p->maxwell_tau > 0.0)) { *dz = 0.0; return s->z_maxwell; }
-  const rtb_real tau = p->maxwell_tau;
-  const rtb_real one_minus_e = -expm1(-dt / tau);
-  const rtb_real slope = (xb - s->xb) / dt;
-  const rtb_real z = xb - slope * tau + (1.0 - one_minus_e) * (s->z_maxwell - s->xb + slope * tau);
-  *dz = 1.0 - tau / dt * one_minus_e;
-  return z;
-}
-
-extern "C" rtb_real rtb_bushing_force(const rtb_params *p, const rtb_state *s_old, rtb_real xb,
-                                    rtb_real y1, rtb_real z, rtb_real dt, rtb_real *dF_dxb) {
-  /* Mullins: K0 softened by (1 - mu (1 - |xb|/xb_max)) below the prior max. */
-  const rtb_real ax = fabs(xb);
-  rtb_real eta = 1.0, deta = 0.0;
-  if (p->mullins > 0.0 && ax < s_old->xb_max) {
-    eta = 1.0 - p->mullins * (1.0 - ax / s_old->xb_max);
-    deta = p->mullins * (xb >= 0.0 ? 1.0 : -1.0) / s_old->xb_max;
-  }
-  const rtb_real sgn = xb > 0.0 ? 1.0 : (xb < 0.0 ? -1.0 : 0.0);
-  /* Softening spring sat_force tanh(xb / sat_disp); its slope sat_force/sat_disp sech^2. */
-  rtb_real sat = 0.0, dsat = 0.0;
-  if (p->sat_disp > 0.0) {
-    const rtb_real th = tanh(xb / p->sat_disp);
-    sat = p->sat_force * th;
-    dsat = p->sat_force / p->sat_disp * (1.0 - th * th);
-  }
-  const rtb_real F = sat + p->K0 * xb * eta          /* eq. (11): K0 y0 */
-                   + p->Kpa * (xb - y1)      /* eq. (11): Kpa (y0 - y1) */
-                   + p->k3 * xb * xb * xb + p->k_asym * ax +
-                   p->maxwell_k * (xb - z) + p->viscous_c * (xb - s_old->xb) / dt;
-  if (dF_dxb)
-    *dF_dxb = p->K0 * (eta + xb * deta) + p->Kpa + 3.0 * p->k3 * xb * xb + p->k_asym * sgn +
-              p->maxwell_k + p->viscous_c / dt + dsat; /* at fixed y1 and z */
-  return F;
-}
-
 namespace {
 
-/* Response of the bushing (no inertia) to a bushing displacement xb. */
+/* Response of the bushing (no inertia) to a bushing displacement xb: the
+ * cells, the branch memories and the force of bushing_force.h. */
 struct Response {
   rtb_stage st[2];
   rtb_real y[RTB_MAX_CELLS];
-  rtb_real z, F, dF;  /* force and total dF/dxb */
+  rtb_real z, z_spec[RTB_MAX_BRANCHES];
+  rtb_real F, dF;  /* force and total dF/dxb */
   int iterations;
   rtb_status status;
 };
 
-/* warm: r holds an earlier response of this step (the clearance search);
- * its first stage starts the new one (closer than the last step's end). */
-void respond(const rtb_state *s, const rtb_params *p, const rtb_settings *set, rtb_real xb,
-             rtb_real dt, bool tangent, int *budget, Response *r, bool warm = false) {
+/* budget: the step's work left (RTB_STEP_WORK). warm: r holds an earlier
+ * response of this step (the clearance search); its first stage starts the
+ * new one (closer than the last step's end). */
+void respond(const rtb_state *s, const rtb_params *p, const rtb_settings *set,
+             const rtb_spectrum *sp, rtb_real xb, rtb_real dt, bool tangent, int *budget,
+             Response *r, bool warm = false) {
   const int n = p->cells;
   rtb_real dy1 = 0.0;
   if (p->model == RTB_MODEL_RT) {
@@ -173,62 +137,116 @@ void respond(const rtb_state *s, const rtb_params *p, const rtb_settings *set, r
     r->status = rtb_sts_solve(p, s->y, xb, r->y, &r->iterations, tangent ? &dy1 : NULL);
     *budget -= n; /* no law: one unit per cell and solve bounds the clearance loop */
   }
-  rtb_real dz;
-  r->z = maxwell_update(p, s, xb, dt, &dz);
-  rtb_real dF_fixed;
-  r->F = rtb_bushing_force(p, s, xb, r->y[0], r->z, dt, &dF_fixed);
-  /* dF_fixed holds y1 and z fixed; add their own dependence on xb. */
-  r->dF = dF_fixed - p->Kpa * dy1 - p->maxwell_k * dz;
+  /* Branch memories; z evolves whenever its tau is set, so dF/dk is exact at k = 0. */
+  rtb_maxwell_lin m;
+  rtb_real dz = 0.0, dF_branches = 0.0;
+  r->z = s->z_maxwell;
+  if (p->maxwell_tau > 0.0) {
+    rtb_maxwell_step(p->maxwell_tau, dt, s->xb, xb, s->z_maxwell, &m);
+    r->z = m.z;
+    dz = m.d_xb_new;
+  }
+  for (int j = 0; j < sp->M; ++j) {
+    rtb_maxwell_step(sp->tau[j], dt, s->xb, xb, s->z_spec[j], &m);
+    r->z_spec[j] = m.z;
+    dF_branches += p->spec_k * sp->w[j] * m.d_xb_new;
+  }
+  rtb_force_lin L;
+  rtb_force_eval(p, xb, s->xb, s->xb_max, r->y[0], r->z, r->z_spec, sp, dt, &L);
+  r->F = L.F;
+  /* L.d_xb holds y1 and the memories fixed; add their own dependence on xb. */
+  r->dF = L.d_xb - p->Kpa * dy1 - p->maxwell_k * dz - dF_branches;
+}
+
+/* Where the bushing end may be: xb in [lo, hi] (hi = +inf for a slack
+ * specimen, which never pushes); phase codes as rtb_state.contact. */
+struct Gap {
+  rtb_real lo, hi;
+  bool held;
+};
+
+Gap gap_of(const rtb_params *p, rtb_real x) {
+  Gap g;
+  g.lo = x - 0.5 * p->backlash;
+  g.hi = p->slack != 0.0 ? INFINITY : x + 0.5 * p->backlash;
+  g.held = p->backlash_held != 0.0;
+  return g;
 }
 
 }  // namespace
 
-/* Clearance of total width g in series (backlash): the bushing end xb stays
- * within [x - g/2, x + g/2]; inside the gap the bushing carries no load, so
- * xb = clamp(xb_free, x - g/2, x + g/2) with F(xb_free) = 0. F is increasing
- * in xb, so a safeguarded Newton/bisection on [x-g/2, x+g/2] finds it.
- * Bounded: at most 2 + RTB_BACKLASH_ITERS responses per step, and by the
- * step's work budget (each response takes its law evaluations from it; a new
- * one starts only while a sweep is left). Returns RTB_NOT_CONVERGED if the
- * budget ended the search before F(xb) = 0 was met. */
+/* Clearance of total width g in series (backlash) and/or a slack specimen:
+ * the bushing end xb stays within [lo, hi]. Floating end: inside, the bushing
+ * carries no load, so xb = clamp(xb_free, lo, hi) with F(xb_free) = 0; F is
+ * increasing in xb, so a safeguarded Newton/bisection finds it (for hi = inf
+ * the bracket is first extended by Newton steps). Held end: xb stays where it
+ * was, clamped into [lo, hi]. Bounded: at most 3 + RTB_BACKLASH_ITERS +
+ * RTB_SLACK_EXTEND responses per step, and by the step's work budget: each
+ * response takes its law evaluations from it, a new one starts only while a
+ * sweep is left (the last response, at *xb_out, is then kept). Returns
+ * RTB_NOT_CONVERGED if the budget ended the search before F(xb) = 0. */
 #define RTB_BACKLASH_ITERS 30
-static rtb_status resolve_backlash(const rtb_state *s, const rtb_params *p,
-                                   const rtb_settings *set, rtb_real x, rtb_real dt, int *budget,
-                                   Response *r, rtb_real *xb_out, int *contact) {
-  const rtb_real lo = x - 0.5 * p->backlash, hi = x + 0.5 * p->backlash;
-  rtb_real xb = fmin(fmax(s->xb, lo), hi);
-  respond(s, p, set, xb, dt, true, budget, r);
-  *contact = 1;
-  if (r->status < 0) { *xb_out = xb; return RTB_OK; }
-  if ((xb == lo && r->F >= 0.0) || (xb == hi && r->F <= 0.0) || r->F == 0.0) {
-    *xb_out = xb;
-    *contact = r->F != 0.0;
-    return RTB_OK;
-  }
+#define RTB_SLACK_EXTEND 8
+static int phase_at(const Gap &g, rtb_real xb) { return xb == g.lo ? 1 : (xb == g.hi ? -1 : 0); }
+
+static rtb_status resolve_gap(const rtb_state *s, const rtb_params *p, const rtb_settings *set,
+                              const rtb_spectrum *sp, rtb_real x, rtb_real dt, int *budget,
+                              Response *r, rtb_real *xb_out, int *contact) {
+  const Gap g = gap_of(p, x);
+  const int sweep = p->cells * rtb_law_unit(p);
+  rtb_real xb = fmin(fmax(s->xb, g.lo), g.hi);
+  respond(s, p, set, sp, xb, dt, true, budget, r);
   *xb_out = xb;
-  if (*budget < p->cells * rtb_law_unit(p)) return RTB_NOT_CONVERGED;
-  rtb_real a = lo, b = hi;
+  if (g.held) { *contact = xb == g.lo ? 1 : (xb == g.hi ? -1 : 3); return RTB_OK; }
+  *contact = phase_at(g, xb);
+  if (r->status < 0) return RTB_OK;
+  if ((xb == g.lo && r->F >= 0.0) || (xb == g.hi && r->F <= 0.0)) return RTB_OK;
+  if (r->F == 0.0) { *contact = 0; return RTB_OK; }
+  if (*budget < sweep) return RTB_NOT_CONVERGED;
+  rtb_real a = g.lo, b = g.hi;
   if (r->F > 0.0) {
     b = xb;
-    respond(s, p, set, lo, dt, true, budget, r, true);
-    *xb_out = lo;
-    if (r->status < 0 || r->F >= 0.0) return RTB_OK;
+    if (xb != g.lo) {
+      respond(s, p, set, sp, g.lo, dt, true, budget, r, true);
+      *xb_out = g.lo;
+      *contact = 1;
+      if (r->status < 0 || r->F >= 0.0) return RTB_OK;
+    }
   } else {
     a = xb;
-    respond(s, p, set, hi, dt, true, budget, r, true);
-    *xb_out = hi;
-    if (r->status < 0 || r->F <= 0.0) return RTB_OK;
+    if (isfinite(g.hi)) {
+      respond(s, p, set, sp, g.hi, dt, true, budget, r, true);
+      *xb_out = g.hi;
+      *contact = -1;
+      if (r->status < 0 || r->F <= 0.0) return RTB_OK;
+    } else {
+      /* Slack: extend a bracket upwards by doubled Newton steps. */
+      rtb_real t = xb, Ft = r->F, dFt = r->dF;
+      b = INFINITY;
+      for (int e = 0; e < RTB_SLACK_EXTEND && !isfinite(b); ++e) {
+        if (*budget < sweep) return RTB_NOT_CONVERGED;
+        const rtb_real step = dFt > 0.0 ? -Ft / dFt : fabs(t - x) + p->backlash + 1e-9;
+        t += 2.0 * step * (rtb_real)(1 << e);
+        respond(s, p, set, sp, t, dt, true, budget, r, true);
+        *xb_out = t;
+        *contact = 0;
+        if (r->status < 0) break;
+        if (r->F > 0.0) b = t; else { a = t; Ft = r->F; dFt = r->dF; }
+      }
+      if (!isfinite(b)) { *contact = 0; return RTB_OK; } /* best effort, bounded */
+    }
   }
   *contact = 0;
-  rtb_real scale = fabs(p->K0) + p->Kpa;
+  const rtb_real scale = fabs(p->K0) + p->Kpa;
+  const rtb_real width = b - a;
   xb = 0.5 * (a + b);
   for (int it = 0; it < RTB_BACKLASH_ITERS; ++it) {
-    if (*budget < p->cells * rtb_law_unit(p)) return RTB_NOT_CONVERGED; /* r: at *xb_out */
-    respond(s, p, set, xb, dt, true, budget, r, true);
+    if (*budget < sweep) return RTB_NOT_CONVERGED; /* r: the response at *xb_out */
+    respond(s, p, set, sp, xb, dt, true, budget, r, true);
     *xb_out = xb;
     if (r->status < 0) break;
     if (r->F > 0.0) b = xb; else a = xb;
-    if (fabs(r->F) <= set->tol * scale * (fabs(xb) + p->backlash) || b - a <= 4 * RTB_REAL_EPSILON * fabs(xb))
+    if (fabs(r->F) <= set->tol * scale * (fabs(xb) + width) || b - a <= 4 * RTB_REAL_EPSILON * fabs(xb))
       break;
     rtb_real nx = xb - r->F / r->dF;
     xb = (r->dF > 0.0 && nx > a && nx < b) ? nx : 0.5 * (a + b);
@@ -258,22 +276,26 @@ extern "C" rtb_status rtb_step_detailed(const rtb_state *s, const rtb_params *p,
   st = rtb_settings_resolve(set_in, &set);
   if (st != RTB_OK) return st;
 
+  rtb_spectrum sp;
+  rtb_spectrum_layout(p, &sp);
   Response r;
   rtb_real xb = x;
-  int contact = 1;
+  int contact = 2;
   int budget = RTB_STEP_WORK;
   rtb_status clearance = RTB_OK;
-  if (p->backlash > 0.0)
-    clearance = resolve_backlash(s, p, &set, x, dt, &budget, &r, &xb, &contact);
-  else respond(s, p, &set, xb, dt, dforce_dx != NULL, &budget, &r);
+  if (p->backlash > 0.0 || p->slack != 0.0)
+    clearance = resolve_gap(s, p, &set, &sp, x, dt, &budget, &r, &xb, &contact);
+  else respond(s, p, &set, &sp, xb, dt, dforce_dx != NULL, &budget, &r);
   if (r.status < 0) return r.status;
   r.status = worse(r.status, clearance);
-
 
   /* Inertia of the load path: F += m a with backward differences of x. */
   const rtb_real vx = (x - s->x) / dt;
   const rtb_real F = r.F + p->mass * (vx - s->vx) / dt;
-  const rtb_real dF = (contact ? r.dF : 0.0) + p->mass / (dt * dt);
+  /* dF/dx: through xb = x (or x -+ g/2) in contact; a floating end does not
+   * follow x, and a held one stays where it was. */
+  const bool follows = contact == 2 || contact == 1 || contact == -1;
+  const rtb_real dF = (follows ? r.dF : 0.0) + p->mass / (dt * dt);
   if (!isfinite(F) || !isfinite(dF)) return RTB_ERR_OVERFLOW;
 
   const int n = p->cells;
@@ -290,6 +312,8 @@ extern "C" rtb_status rtb_step_detailed(const rtb_state *s, const rtb_params *p,
     next.dt_prev = dt;
   }
   next.z_maxwell = r.z;
+  memcpy(next.z_spec, r.z_spec, sizeof(rtb_real) * (size_t)sp.M);
+  next.contact = contact;
   next.xb_max = fmax(s->xb_max, fabs(xb));
   next.vx = vx;
   next.steps = s->steps + 1;
@@ -321,6 +345,8 @@ extern "C" rtb_status rtb_state_init(rtb_state *s, const rtb_params *p, rtb_real
   for (int k = 0; k < p->cells; ++k) t.y[k] = k == 0 ? p->Kpa * x0 : 0.0;
   rtb_chain_solve(p->cells, p->Kpa, p->Kr, t.y, work);
   t.z_maxwell = x0;
+  for (int j = 0; j < RTB_MAX_BRANCHES; ++j) t.z_spec[j] = x0;
+  t.contact = 2;
   t.xb_max = fabs(x0);
   t.force = rtb_static_force(p, x0);
   *s = t;
