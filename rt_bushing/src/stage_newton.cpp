@@ -33,8 +33,9 @@
  * Work is bounded by the step's budget (*budget, rt_bushing.h
  * RTB_STEP_WORK): a sweep starts only if the budget still holds one
  * evaluation per cell, and every evaluation (each psi_s evaluation of the
- * smoothed inverse included, at RTB_SLAW_UNIT units) is taken from it. When it runs out the last
- * accepted iterate is kept and RTB_NOT_CONVERGED returned.
+ * smoothed inverse included, at RTB_SLAW_UNIT units) is taken from it. When
+ * it runs out the last accepted iterate is kept and RTB_NOT_CONVERGED
+ * returned.
  */
 #include <float.h>
 #include <math.h>
@@ -58,7 +59,7 @@ struct Chain {
 /* H = f + h K v - r; returns the max-norm (and the squared 2-norm in *sq),
  * or +inf if anything is non-finite. */
 rtb_real residual(const Chain &ch, const rtb_real *f, const rtb_real *v, const rtb_real *r,
-                rtb_real *H, rtb_real *sq) {
+                  rtb_real *H, rtb_real *sq) {
   const int n = ch.n;
   const rtb_real hKr = ch.hKr, h2Kr = 2.0 * ch.hKr;
   /* Row 0 (Kpa + Kr on the diagonal) and row n-1 (no right neighbour) are
@@ -81,7 +82,8 @@ rtb_real residual(const Chain &ch, const rtb_real *f, const rtb_real *v, const r
 /* Evaluate the law at v (steep DOFs) or f (the others) for all cells; D =
  * dv/df at the new pair, and the next iteration's choice of update variable
  * (steep: h K_kk D > 1). Takes the evaluations from *budget; returns max |f|. */
-rtb_real law_sweep(const Chain &ch, bool *steep, rtb_real *f, rtb_real *v, rtb_real *D, int *budget) {
+rtb_real law_sweep(const Chain &ch, bool *steep, rtb_real *f, rtb_real *v, rtb_real *D,
+                   int *budget) {
   const int n = ch.n;
   rtb_real fmax_abs = 0.0;
   if (!(ch.law.s > 0.0)) { /* eq. (1): one evaluation per cell */
@@ -132,7 +134,6 @@ int newton_solve(const Chain &ch, const rtb_real *D, const rtb_real *H, rtb_real
   for (int k = n - 2; k >= 0; --k) dl[k] -= w[k + 1] * dl[k + 1];
   return 0;
 }
-
 
 /* Pair (f, v), slopes D, residual H and the update choice of one iterate. */
 struct Iterate {
