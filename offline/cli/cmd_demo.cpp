@@ -55,7 +55,7 @@ int run_demo(int argc, char **argv) {
       "demo",
       "Built-in example: the element's loop and relaxation, then generated records\n"
       "with a hidden effect, identified and diagnosed without being told the effect.",
-      {{"effect", "NAME", "hidden effect (default backlash; any vocabulary word or none)"},
+      {{"effect", "NAME", "hidden effect (default backlash; any vocabulary word, backlash_held or none)"},
        {"seed", "N", "random parameters seed (default 3)"},
        {"duration", "S", "length of each generated record in seconds (default 8)"},
        {"out-dir", "DIR", "where the records, report and header go (default build/demo)"}}};
@@ -67,7 +67,10 @@ int run_demo(int argc, char **argv) {
   if (!(duration >= 2.0 && duration <= 600.0))
     throw InputError("--duration must be between 2 and 600 s");
 
-  ::mkdir(dir.c_str(), 0755);
+  for (size_t k = dir.find('/', 1); ; k = dir.find('/', k + 1)) {  // mkdir -p
+    ::mkdir(dir.substr(0, k).c_str(), 0755);
+    if (k == std::string::npos) break;
+  }
   element_table();
 
   std::printf("== 2. Generated test-rig records, 0.5%% force noise, one hidden effect\n");

@@ -18,10 +18,13 @@ namespace cli {
 int run_diagnose(int argc, char **argv) {
   static const CommandSpec spec{
       "diagnose",
-      "Fit the RT model, analyse its residuals, try every extension of the\n"
-      "vocabulary (cubic_stiffness, asymmetry, maxwell, viscous, backlash, mullins,\n"
-      "delay, inertia, offset, softening) and name the cause that explains the held-out\n"
-      "records best, or none.",
+      "Fit the RT model, estimate the noise floor from the data, try every extension\n"
+      "of the vocabulary (cubic_stiffness, asymmetry, maxwell, viscous, backlash\n"
+      "(floating or held end), mullins, delay, inertia, offset, softening, slack,\n"
+      "relaxation_spectrum, friction_asymmetry) and name the causes that explain the\n"
+      "held-out records, one after another while the next still pays; `none` when\n"
+      "the residual is at the noise floor, `unexplained` (with the residual's\n"
+      "signature) when it is above it and no candidate removes it.",
       {
           {"data", "FILE", "fit record CSV; repeat for several", true, true},
           {"holdout", "FILE", "held-out record CSV; repeat for several", false, true},

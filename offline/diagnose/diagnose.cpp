@@ -130,7 +130,14 @@ void judge(CandidateOutcome &co, const Current &cur, const Context &cx, double m
   // as a linear dashpot c = k tau: the data cannot tell it from `viscous`.
   const bool unresolved_tau =
       co.cand.name == "maxwell" && co.fit.model.p.maxwell_tau < 2.0 * cx.sc.dt;
+  // A size pinned at the edge of its admissible range (a dashpot level
+  // asymmetry of 95%, a Mullins loss of 95%) is the fit compensating for
+  // something else with the nearest freedom it has, not a measurement of it.
+  const bool at_bound = (co.cand.name == "friction_asymmetry" &&
+                         std::fabs(co.fit.model.p.fric_asym) >= 0.94) ||
+                        (co.cand.name == "mullins" && co.fit.model.p.mullins >= 0.94);
   if (co.amplitude_z < opt.min_z) co.why = "effect not significant (z < min_z)";
+  else if (at_bound) co.why = "size at the bound of its admissible range: a compensation, not a measurement";
   else if (unresolved_tau) co.why = "relaxation time below 2 sample intervals: a viscous dashpot";
   else if (co.dbic < opt.min_dbic) co.why = "fit gain explained by the extra parameters (delta BIC)";
   else if (co.gain < min_gain) co.why = cx.holdout.empty() ? "fit gain below min_gain" : "held-out gain below min_gain";
@@ -144,13 +151,25 @@ void judge(CandidateOutcome &co, const Current &cur, const Context &cx, double m
 std::vector<CandidateOutcome> one_round(const Current &cur, const Context &cx, int round,
                                         DiagnoseResult &R) {
   std::vector<Candidate> cands;
+  std::vector<CandidateOutcome> excluded;
   for (const Candidate &c : candidate_vocabulary()) {
     if (!cx.opt.only.empty() &&
         std::find(cx.opt.only.begin(), cx.opt.only.end(), c.name) == cx.opt.only.end())
       continue;
     bool clash = false;
     for (const Candidate &k : cur.causes) clash = clash || candidates_conflict(c, k);
-    if (!clash) cands.push_back(c);
+    if (clash) continue;
+    const std::string why = excluded_by_data(c, cx.all);
+    if (why.empty()) {
+      cands.push_back(c);
+      continue;
+    }
+    CandidateOutcome co;  // reported, never screened
+    co.cand = c;
+    co.round = round;
+    co.why = why;
+    co.screen.start = cur.model;
+    excluded.push_back(co);
   }
   std::vector<CandidateOutcome> out(cands.size());
   const auto t_screen = Clock::now();
@@ -167,6 +186,10 @@ std::vector<CandidateOutcome> one_round(const Current &cur, const Context &cx, i
   R.seconds_joint += since(t_joint);
   for (CandidateOutcome &co : out)
     judge(co, cur, cx, round == 0 ? cx.opt.min_gain : cx.opt.min_gain_next);
+  for (CandidateOutcome &co : excluded) {
+    judge(co, cur, cx, 0.0);
+    out.push_back(co);
+  }
   return out;
 }
 

@@ -20,6 +20,10 @@
 
 namespace rtb {
 
+// "" unless the records exclude candidate c before any fit, e.g. slack on a
+// specimen whose measured force is clearly negative somewhere (it pushes).
+std::string excluded_by_data(const Candidate &c, const std::vector<Record> &recs);
+
 // "" when the data do not contradict candidate c as fitted (model `fitted`,
 // fitted on top of `current`); else why. sigma: the records' noise levels
 // (noise_floor.h), in the order fit then holdout.

@@ -111,6 +111,14 @@ Scenario hidden_effect_scenario(const std::string &effect, unsigned seed, double
   else if (effect == "inertia") p.mass = 0.15 * Fel / (A * std::pow(2 * 3.14159 * 3.0, 2));
   else if (effect == "offset") sc.truth.offset = 0.05 * Fel;
   else if (effect == "softening") { p.sat_force = 0.3 * Fel; p.sat_disp = logu(0.1, 0.3) * A; }
+  else if (effect == "backlash_held") { p.backlash = 0.05 * A; p.backlash_held = 1; }
+  else if (effect == "slack") p.slack = 1;
+  else if (effect == "relaxation_spectrum") {
+    p.spec_k = 0.5 * Fel / A;
+    p.spec_exp = 0.2 + 0.3 * U(rng);
+    p.spec_tau_min = 3e-3;
+    p.spec_tau_max = 10.0;
+  } else if (effect == "friction_asymmetry") p.fric_asym = (U(rng) < 0.5 ? 1 : -1) * 0.4;
   else if (effect != "none") throw std::invalid_argument("unknown effect " + effect);
   sc.truth.noise = noise;
   const double T = duration;
