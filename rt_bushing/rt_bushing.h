@@ -208,11 +208,8 @@ typedef struct rtb_params {
 
 /* Numerical settings of the implicit solve. NULL means rtb_settings_default. */
 typedef struct rtb_settings {
-  rtb_real tol;      /* relative residual tolerance of each Newton solve (1e-10:
-                        the force then sits within ~1e-12 relative of the fully
-                        converged stage, 1e-8 of the 1 kHz discretisation error;
-                        docs/accuracy.md is unchanged to its digits. The offline
-                        tool passes its own, 1e-12 or tighter) */
+  rtb_real tol;      /* relative residual tolerance of each Newton solve (1e-12;
+                        1e-10 leaves docs/accuracy.md unchanged and saves ~8%) */
   int max_iter;      /* Newton iterations per stage, 1..100 (default 40) */
   int max_backtrack; /* line-search halvings per iteration, 0..60 (default 30) */
 } rtb_settings;

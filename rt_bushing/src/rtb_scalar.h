@@ -18,9 +18,10 @@
 #define RTB_REAL_MAX FLT_MAX
 #define RTB_REAL_MIN FLT_MIN
 #define RTB_REAL_EPSILON FLT_EPSILON
-/* default Newton tolerance: ~170 eps (double: 1e-10 = 4.5e5 eps, chosen
- * against the accuracy table; float cannot resolve below ~100 eps because
- * the residual itself is rounded at that level) */
+/* default Newton tolerance: ~170 eps (double: 1e-12 = 4.5e3 eps, the value
+ * the offline tool also uses, so a generated header run with the defaults
+ * reproduces its simulation bit for bit; float cannot resolve below ~100 eps
+ * because the residual itself is rounded at that level) */
 #define RTB_TOL_DEFAULT 2e-5
 #define RTB_TOL_MIN 1e-7           /* ~1 eps */
 #define RTB_STS_TIE_REL 5e-5       /* active-set tie band, ~450 eps */
@@ -28,7 +29,7 @@
 #define RTB_REAL_MAX DBL_MAX
 #define RTB_REAL_MIN DBL_MIN
 #define RTB_REAL_EPSILON DBL_EPSILON
-#define RTB_TOL_DEFAULT 1e-10
+#define RTB_TOL_DEFAULT 1e-12
 #define RTB_TOL_MIN 1e-16
 #define RTB_STS_TIE_REL 1e-13
 #endif

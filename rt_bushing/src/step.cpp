@@ -207,7 +207,7 @@ static rtb_status resolve_gap(const rtb_state *s, const rtb_params *p, const rtb
   if (r->F > 0.0) {
     b = xb;
     if (xb != g.lo) {
-      respond(s, p, set, sp, g.lo, dt, true, budget, r, true);
+      respond(s, p, set, sp, g.lo, dt, true, budget, r); /* cold: as without a gap */
       *xb_out = g.lo;
       *contact = 1;
       if (r->status < 0 || r->F >= 0.0) return RTB_OK;
@@ -215,7 +215,7 @@ static rtb_status resolve_gap(const rtb_state *s, const rtb_params *p, const rtb
   } else {
     a = xb;
     if (isfinite(g.hi)) {
-      respond(s, p, set, sp, g.hi, dt, true, budget, r, true);
+      respond(s, p, set, sp, g.hi, dt, true, budget, r); /* cold: as without a gap */
       *xb_out = g.hi;
       *contact = -1;
       if (r->status < 0 || r->F <= 0.0) return RTB_OK;
