@@ -139,22 +139,39 @@ struct Response {
   double y[RTB_MAX_CELLS];
   double z, F, dF;  /* force and total dF/dxb */
   int iterations;
+  int backtracks;
+  double residual;  /* max relative stage residual (RT) */
   rtb_status status;
 };
 
+/* Work of every response of a step, for rtb_step_info. */
+struct Cost {
+  int iterations, backtracks, responses;
+  void add(const Response &r) {
+    iterations += r.iterations;
+    backtracks += r.backtracks;
+    ++responses;
+  }
+};
+
 void respond(const rtb_state *s, const rtb_params *p, const rtb_settings *set, double xb,
-             double dt, bool tangent, Response *r) {
+             double dt, bool tangent, Response *r, Cost *cost) {
   const int n = p->cells;
   double dy1 = 0.0;
+  r->backtracks = 0;
+  r->residual = 0.0;
   if (p->model == RTB_MODEL_RT) {
     r->status = rtb_chain_advance(p, set, s, xb, dt, r->st);
     const int ns = rtb_integrator_stages(p);
     memcpy(r->y, r->st[ns - 1].y, sizeof(double) * n);
     r->iterations = r->st[0].iterations + (ns == 2 ? r->st[1].iterations : 0);
+    r->backtracks = r->st[0].backtracks + (ns == 2 ? r->st[1].backtracks : 0);
+    r->residual = fmax(r->st[0].residual, ns == 2 ? r->st[1].residual : 0.0);
     if (tangent && r->status >= 0) dy1 = chain_dy1_dxb(p, r->st, dt);
   } else {
     r->status = rtb_sts_solve(p, s->y, xb, r->y, &r->iterations, tangent ? &dy1 : NULL);
   }
+  cost->add(*r);
   double dz;
   r->z = maxwell_update(p, s, xb, dt, &dz);
   double dF_fixed;
@@ -169,14 +186,18 @@ void respond(const rtb_state *s, const rtb_params *p, const rtb_settings *set, d
  * within [x - g/2, x + g/2]; inside the gap the bushing carries no load, so
  * xb = clamp(xb_free, x - g/2, x + g/2) with F(xb_free) = 0. F is increasing
  * in xb, so a safeguarded Newton/bisection on [x-g/2, x+g/2] finds it.
- * Bounded: at most 2 + RTB_BACKLASH_ITERS responses per step. */
-#define RTB_BACKLASH_ITERS 30
+ * Bounded: at most 2 + iters responses per step. The response in *r is
+ * always the one at *xb_out (state, force and tangent agree); a search that
+ * runs out of iterations reports RTB_NOT_CONVERGED in r->status and its
+ * relative force residual in *residual. */
 static void resolve_backlash(const rtb_state *s, const rtb_params *p, const rtb_settings *set,
-                             double x, double dt, Response *r, double *xb_out, int *contact) {
+                             double x, double dt, int iters, Response *r, Cost *cost,
+                             double *xb_out, int *contact, double *residual) {
   const double lo = x - 0.5 * p->backlash, hi = x + 0.5 * p->backlash;
   double xb = fmin(fmax(s->xb, lo), hi);
-  respond(s, p, set, xb, dt, true, r);
+  respond(s, p, set, xb, dt, true, r, cost);
   *contact = 1;
+  *residual = 0.0;
   if (r->status < 0) { *xb_out = xb; return; }
   if ((xb == lo && r->F >= 0.0) || (xb == hi && r->F <= 0.0) || r->F == 0.0) {
     *xb_out = xb;
@@ -186,26 +207,33 @@ static void resolve_backlash(const rtb_state *s, const rtb_params *p, const rtb_
   double a = lo, b = hi;
   if (r->F > 0.0) {
     b = xb;
-    respond(s, p, set, lo, dt, true, r);
+    respond(s, p, set, lo, dt, true, r, cost);
     if (r->status < 0 || r->F >= 0.0) { *xb_out = lo; return; }
   } else {
     a = xb;
-    respond(s, p, set, hi, dt, true, r);
+    respond(s, p, set, hi, dt, true, r, cost);
     if (r->status < 0 || r->F <= 0.0) { *xb_out = hi; return; }
   }
   *contact = 0;
-  double scale = fabs(p->K0) + p->Kpa;
+  const double scale = fabs(p->K0) + p->Kpa;
+  bool converged = false;
   xb = 0.5 * (a + b);
-  for (int it = 0; it < RTB_BACKLASH_ITERS; ++it) {
-    respond(s, p, set, xb, dt, true, r);
+  for (int it = 0; it < iters; ++it) {
+    respond(s, p, set, xb, dt, true, r, cost);
     if (r->status < 0) break;
     if (r->F > 0.0) b = xb; else a = xb;
-    if (fabs(r->F) <= set->tol * scale * (fabs(xb) + p->backlash) || b - a <= 4 * DBL_EPSILON * fabs(xb))
+    *residual = fabs(r->F) / (scale * (fabs(xb) + p->backlash));
+    if (fabs(r->F) <= set->tol * scale * (fabs(xb) + p->backlash) ||
+        b - a <= 4 * DBL_EPSILON * fabs(xb)) {
+      converged = true;
       break;
+    }
+    if (it + 1 == iters) break;  /* keep xb where r was computed */
     double nx = xb - r->F / r->dF;
     xb = (r->dF > 0.0 && nx > a && nx < b) ? nx : 0.5 * (a + b);
   }
   *xb_out = xb;
+  if (!converged && r->status == RTB_OK) r->status = RTB_NOT_CONVERGED;
 }
 
 static rtb_status check_call(const rtb_state *s, const rtb_params *p, double x, double dt) {
@@ -220,10 +248,11 @@ static rtb_status check_call(const rtb_state *s, const rtb_params *p, double x, 
   return RTB_OK;
 }
 
-extern "C" rtb_status rtb_step_detailed(const rtb_state *s, const rtb_params *p,
-                                        const rtb_settings *set_in, double x, double dt,
-                                        rtb_state *out, double *force, double *dforce_dx,
-                                        rtb_stage stages[2]) {
+extern "C" rtb_status rtb_step_core(const rtb_state *s, const rtb_params *p,
+                                    const rtb_settings *set_in, double x, double dt,
+                                    rtb_state *out, double *force, double *dforce_dx,
+                                    rtb_stage stages[2], rtb_step_info *info,
+                                    int backlash_iters) {
   rtb_status st = check_call(s, p, x, dt);
   if (st != RTB_OK) return st;
   rtb_settings set;
@@ -231,10 +260,14 @@ extern "C" rtb_status rtb_step_detailed(const rtb_state *s, const rtb_params *p,
   if (st != RTB_OK) return st;
 
   Response r;
-  double xb = x;
+  Cost cost = {0, 0, 0};
+  double xb = x, clearance_residual = 0.0;
   int contact = 1;
-  if (p->backlash > 0.0) resolve_backlash(s, p, &set, x, dt, &r, &xb, &contact);
-  else respond(s, p, &set, xb, dt, dforce_dx != NULL, &r);
+  if (p->backlash > 0.0)
+    resolve_backlash(s, p, &set, x, dt, backlash_iters, &r, &cost, &xb, &contact,
+                     &clearance_residual);
+  else
+    respond(s, p, &set, xb, dt, dforce_dx != NULL, &r, &cost);
   if (r.status < 0) return r.status;
 
   /* Inertia of the load path: F += m a with backward differences of x. */
@@ -268,7 +301,23 @@ extern "C" rtb_status rtb_step_detailed(const rtb_state *s, const rtb_params *p,
   if (force) *force = F;
   if (dforce_dx) *dforce_dx = dF;
   if (stages && p->model == RTB_MODEL_RT) memcpy(stages, r.st, sizeof r.st);
+  if (info) {
+    info->iterations = cost.iterations;
+    info->backtracks = cost.backtracks;
+    info->clearance_iterations = p->backlash > 0.0 ? cost.responses : 0;
+    info->stages = p->model == RTB_MODEL_RT ? rtb_integrator_stages(p) : 1;
+    info->residual = r.residual;
+    info->clearance_residual = contact ? 0.0 : clearance_residual;
+  }
   return r.status;
+}
+
+extern "C" rtb_status rtb_step_detailed(const rtb_state *s, const rtb_params *p,
+                                        const rtb_settings *set, double x, double dt,
+                                        rtb_state *out, double *force, double *dforce_dx,
+                                        rtb_stage stages[2]) {
+  return rtb_step_core(s, p, set, x, dt, out, force, dforce_dx, stages, NULL,
+                       RTB_BACKLASH_ITERS);
 }
 
 extern "C" rtb_status rtb_state_init(rtb_state *s, const rtb_params *p, rtb_real x0) {
@@ -294,12 +343,20 @@ extern "C" rtb_status rtb_state_init(rtb_state *s, const rtb_params *p, rtb_real
   return RTB_OK;
 }
 
+extern "C" rtb_status rtb_evaluate_ex(const rtb_state *s, const rtb_params *p,
+                                      const rtb_settings *set, rtb_real x, rtb_real dt,
+                                      rtb_state *trial, rtb_real *force, rtb_real *dforce_dx,
+                                      rtb_step_info *info) {
+  if (!s || !trial || !force) return RTB_ERR_NULL;
+  if (trial == s) return RTB_ERR_ALIAS;
+  return rtb_step_core(s, p, set, x, dt, trial, force, dforce_dx, NULL, info,
+                       RTB_BACKLASH_ITERS);
+}
+
 extern "C" rtb_status rtb_evaluate(const rtb_state *s, const rtb_params *p,
                                    const rtb_settings *set, rtb_real x, rtb_real dt,
                                    rtb_state *trial, rtb_real *force, rtb_real *dforce_dx) {
-  if (!trial || !force) return RTB_ERR_NULL;
-  if (trial == s) return RTB_ERR_NULL;
-  return rtb_step_detailed(s, p, set, x, dt, trial, force, dforce_dx, NULL);
+  return rtb_evaluate_ex(s, p, set, x, dt, trial, force, dforce_dx, NULL);
 }
 
 extern "C" rtb_status rtb_commit(rtb_state *s, const rtb_state *trial) {
@@ -309,11 +366,18 @@ extern "C" rtb_status rtb_commit(rtb_state *s, const rtb_state *trial) {
   return RTB_OK;
 }
 
-extern "C" rtb_status rtb_step(rtb_state *s, const rtb_params *p, const rtb_settings *set,
-                               rtb_real x, rtb_real dt, rtb_real *force) {
+extern "C" rtb_status rtb_step_ex(rtb_state *s, const rtb_params *p, const rtb_settings *set,
+                                  rtb_real x, rtb_real dt, rtb_real *force,
+                                  rtb_step_info *info) {
   if (!force) return RTB_ERR_NULL;
   rtb_state next;
-  rtb_status st = rtb_step_detailed(s, p, set, x, dt, &next, force, NULL, NULL);
+  rtb_status st = rtb_step_core(s, p, set, x, dt, &next, force, NULL, NULL, info,
+                                RTB_BACKLASH_ITERS);
   if (st >= 0) *s = next;
   return st;
+}
+
+extern "C" rtb_status rtb_step(rtb_state *s, const rtb_params *p, const rtb_settings *set,
+                               rtb_real x, rtb_real dt, rtb_real *force) {
+  return rtb_step_ex(s, p, set, x, dt, force, NULL);
 }
