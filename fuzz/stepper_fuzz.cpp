@@ -50,6 +50,16 @@ rtb_params make_params(Bytes &in) {
     p.sat_disp = in.log_uniform(1e-6, 1e2);
   }
   if (mode & 8) p.smoothing = in.log_uniform(1e-3, 1e6);
+  const uint8_t ext3 = in.u8();  // the ABI 3 extensions
+  if (ext3 & 1) p.slack = 1.0;
+  else if (ext3 & 2) p.backlash_held = 1.0;
+  if ((ext3 & 4) && p.model == RTB_MODEL_RT) p.fric_asym = in.unit() * 1.98 - 0.99;
+  if (ext3 & 8) {
+    p.spec_k = in.log_uniform(1e-3, 1e5);
+    p.spec_exp = in.unit() * 2.0 - 1.0;
+    p.spec_tau_min = in.log_uniform(1e-5, 1e1);
+    p.spec_tau_max = p.spec_tau_min * in.log_uniform(1.0, 1e8);
+  }
   // Rarely, any bits in one field (the validation paths and RTB_ERR_*).
   if ((mode & 0x70) == 0x70) {
     const uint8_t which = in.u8();
