@@ -4,6 +4,7 @@
 #   make demo     build, then run `build/rtb demo`
 #   make bench    build, then run the Google Benchmark suite (JSON in build/bench.json)
 #   make report   build, then run `build/rtb report`
+#   make fuzz     libFuzzer targets (clang-14) for FUZZ_SECONDS each, in build-fuzz/
 #   make clean    remove the build trees
 # Every target except clean first checks the Debian packages it needs (deps).
 
@@ -23,17 +24,21 @@ SUBMAKE_ENV := env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL
 
 DEB_PACKAGES := cmake g++ make libgtest-dev libbenchmark-dev libeigen3-dev \
                 nlohmann-json3-dev gnuplot-nox
+# Only `make fuzz` needs clang and libFuzzer; `make test` replays the seed
+# corpus with the gcc build instead (fuzz/CMakeLists.txt).
+FUZZ_PACKAGES := cmake make clang-14 libfuzzer-14-dev nlohmann-json3-dev
 
-.PHONY: all deps configure build test test-release check-symbols test-asan \
-        demo bench report clean
+.PHONY: all deps fuzz-deps configure build test test-release check-symbols test-asan \
+        demo bench report fuzz clean
 
 all: build
 
 # ------------------------------------------------------------------ deps
 # Only Debian packages are ever installed; nothing else is downloaded.
-deps:
+# $(call ensure_packages,LIST): install what is missing (root) or say how.
+define ensure_packages
 	@missing=""; \
-	for p in $(DEB_PACKAGES); do \
+	for p in $(1); do \
 	  if ! dpkg-query -W -f='$${Status}\n' "$$p" 2>/dev/null | grep -q '^install ok installed$$'; then \
 	    missing="$$missing $$p"; \
 	  fi; \
@@ -48,6 +53,13 @@ deps:
 	  echo "sudo apt-get install -y $$missing"; \
 	  exit 1; \
 	fi
+endef
+
+deps:
+	$(call ensure_packages,$(DEB_PACKAGES))
+
+fuzz-deps:
+	$(call ensure_packages,$(FUZZ_PACKAGES))
 
 # ------------------------------------------------------------------ build
 configure: deps
@@ -100,5 +112,29 @@ bench: build
 	@if [ ! -x $(BUILD)/bench/rtb_bench ]; then echo "$(BUILD)/bench/rtb_bench was not built (no bench/*_bench.cpp?)"; exit 1; fi
 	./$(BUILD)/bench/rtb_bench --benchmark_out=$(BUILD)/bench.json --benchmark_out_format=json
 
+# ------------------------------------------------------------------ fuzzing
+# Each target runs FUZZ_SECONDS from the seed corpus fuzz/corpus/<target>/
+# (read only); new inputs go to $(FUZZ)/corpus/<target>/, crashes to
+# $(FUZZ)/artifacts/. A crash stops make with the reproducer's path:
+# turn it into a regression test (tests/*_test.cpp) and add it to the corpus.
+FUZZ         ?= build-fuzz
+FUZZ_SECONDS ?= 30
+FUZZ_TARGETS := csv_reader params_json stepper
+fuzz: fuzz-deps
+	$(CMAKE) -S . -B $(FUZZ) -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+	  -DCMAKE_C_COMPILER=clang-14 -DCMAKE_CXX_COMPILER=clang++-14 -DRTB_FUZZ=ON \
+	  -DRTB_BUILD_TESTS=OFF -DRTB_BUILD_BENCH=OFF -DRTB_BUILD_OFFLINE=OFF
+	$(SUBMAKE_ENV) $(CMAKE) --build $(FUZZ) --parallel $(JOBS)
+	@for t in $(FUZZ_TARGETS); do \
+	  mkdir -p $(FUZZ)/corpus/$$t $(FUZZ)/artifacts; \
+	  echo "== fuzz $$t for $(FUZZ_SECONDS) s"; \
+	  UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 \
+	  ./$(FUZZ)/fuzz/$${t}_fuzz -max_total_time=$(FUZZ_SECONDS) -print_final_stats=1 \
+	    -artifact_prefix=$(FUZZ)/artifacts/$$t- $(FUZZ)/corpus/$$t fuzz/corpus/$$t \
+	    2> $(FUZZ)/$$t.log || { tail -n 40 $(FUZZ)/$$t.log; exit 1; }; \
+	  grep -E '^stat::(number_of_executed_units|new_units_added)' $(FUZZ)/$$t.log | tr '\n' ' '; echo; \
+	done
+	@echo "make fuzz: $(words $(FUZZ_TARGETS)) targets, $(FUZZ_SECONDS) s each, no crash"
+
 clean:
-	rm -rf $(BUILD) $(ASAN)
+	rm -rf $(BUILD) $(ASAN) $(FUZZ)

@@ -16,13 +16,45 @@
  *   rtb_params p;  rtb_params_default(&p, RTB_MODEL_RT);   // or a generated header
  *   rtb_state  s;  rtb_state_init(&s, &p, 0.0);
  *   for (...) { double F; rtb_status st = rtb_step(&s, &p, NULL, x, dt, &F); }
+ *
+ * Thread safety: the library has no global mutable state. Calls on distinct
+ * rtb_state objects may run concurrently in any number of threads. The
+ * read-only inputs (rtb_params, rtb_settings, and the committed state `s` of
+ * rtb_evaluate) may be shared between threads as long as no thread writes
+ * them meanwhile; a state that is written (rtb_step, rtb_commit, the `trial`
+ * of rtb_evaluate, rtb_state_init) must be used by one thread at a time.
+ * rtb_status_message and rtb_get_info return pointers to constant strings.
+ *
+ * Stack: every library function's own frame is at most RTB_STACK_FRAME_MAX
+ * bytes (checked at build time with GCC's -Wstack-usage, see CMakeLists.txt),
+ * and the deepest call chain (rtb_evaluate with a clearance: API -> step ->
+ * clearance -> response -> chain advance -> stage solve -> dashpot law) uses
+ * at most RTB_STACK_DEPTH_MAX bytes in an optimised x86-64 build (measured
+ * 8.9 KiB at -O3, 10.7 KiB at -O2 by tests/step_info_test.cpp, which paints
+ * a thread's stack; sanitizer and -O0 builds use more). Reserve at least
+ * that much for a real-time thread that calls the library.
  */
 #ifndef RT_BUSHING_H
 #define RT_BUSHING_H
 
+#include <stdint.h>
+
 #ifdef __cplusplus
 extern "C" {
 #endif
+
+/* Exported functions. The library is built with -fvisibility=hidden: only
+ * the functions marked RTB_API are visible outside a shared build. */
+#if defined(__GNUC__)
+#define RTB_API __attribute__((visibility("default")))
+#else
+#define RTB_API
+#endif
+
+#define RTB_STACK_FRAME_MAX 6144   /* bytes, per function (-Wstack-usage); the largest is
+                                      rtb_step_core (~4.3 KiB: two stage records, the
+                                      new state, the spectrum layout) */
+#define RTB_STACK_DEPTH_MAX 16384  /* bytes, deepest call chain */
 
 /* ------------------------------------------------------------------ */
 /* Types                                                               */
@@ -31,7 +63,8 @@ extern "C" {
 #define RTB_ABI_VERSION 3     /* bumped on any layout change of the structs
                                  (2: `smoothing`, `sat_force`, `sat_disp` took reserved[0..2];
                                   3: slack, backlash_held, fric_asym, spec_* and the
-                                  spectrum memory z_spec in rtb_state) */
+                                  spectrum memory z_spec in rtb_state; fixed-width
+                                  integer fields, struct sizes in rtb_info) */
 #define RTB_MAX_CELLS 32      /* capacity of rtb_state; N = 1 .. RTB_MAX_CELLS */
 #define RTB_DEFAULT_CELLS 15  /* the paper's choice (section 3.4) */
 #define RTB_N_RESERVED 6
@@ -65,7 +98,9 @@ typedef enum rtb_status {
   RTB_ERR_DT = -10,           /* dt non-finite or outside [RTB_DT_MIN, RTB_DT_MAX] */
   RTB_ERR_STATE = -11,        /* state not initialised for these parameters */
   RTB_ERR_OVERFLOW = -12,     /* the step would produce a non-finite value */
-  RTB_ERR_SETTINGS = -13      /* tolerance or iteration limit out of range */
+  RTB_ERR_SETTINGS = -13,     /* tolerance or iteration limit out of range */
+  RTB_ERR_ALIAS = -14,        /* an output struct aliases an input (trial == s) */
+  RTB_ERR_CAPACITY = -15      /* a capacity argument is negative */
 } rtb_status;
 
 typedef enum rtb_model {
@@ -85,10 +120,10 @@ typedef enum rtb_integrator {
  * silently misread. Every extension is off when its field is zero.
  */
 typedef struct rtb_params {
-  int abi_version;   /* = RTB_ABI_VERSION */
-  int model;         /* rtb_model */
-  int cells;         /* N */
-  int integrator;    /* rtb_integrator (RT only; STS is rate-independent) */
+  int32_t abi_version;   /* = RTB_ABI_VERSION */
+  int32_t model;         /* rtb_model */
+  int32_t cells;         /* N */
+  int32_t integrator;    /* rtb_integrator (RT only; STS is rate-independent) */
 
   /* Core parameters p = (K0, Kpa, Kr, C0, alpha), eq. (2) and (11). */
   rtb_real K0;       /* global elastic stiffness, >= 0       [force/length] */
@@ -185,16 +220,16 @@ typedef struct rtb_params {
 /* Numerical settings of the implicit solve. NULL means rtb_settings_default. */
 typedef struct rtb_settings {
   rtb_real tol;      /* relative residual tolerance of each Newton solve (1e-12) */
-  int max_iter;      /* Newton iterations per stage, 1..100 (default 40) */
-  int max_backtrack; /* line-search halvings per iteration, 0..60 (default 30) */
+  int32_t max_iter;      /* Newton iterations per stage, 1..100 (default 40) */
+  int32_t max_backtrack; /* line-search halvings per iteration, 0..60 (default 30) */
 } rtb_settings;
 
 /* State of one element. Plain data: copy it to save/restore (host rollback). */
 typedef struct rtb_state {
-  int abi_version;
-  int model;
-  int cells;
-  int initialised;             /* 1 after rtb_state_init */
+  int32_t abi_version;
+  int32_t model;
+  int32_t cells;
+  int32_t initialised;         /* 1 after rtb_state_init */
   rtb_real x;                  /* last committed input displacement [length] */
   rtb_real xb;                 /* bushing-side displacement (x minus clearance) */
   rtb_real force;              /* last committed force [force] */
@@ -208,13 +243,30 @@ typedef struct rtb_state {
   rtb_real vx;                 /* last input velocity estimate (inertia) */
   rtb_real z_spec[RTB_MAX_BRANCHES]; /* relaxation-spectrum branch displacements */
   rtb_real reserved[8];
-  long steps;                  /* committed steps */
-  int last_iterations;         /* Newton iterations used by the last step */
-  int contact;                 /* phase of the bushing end in the last step:
+  int64_t steps;               /* committed steps */
+  int32_t last_iterations;     /* Newton iterations used by the last step */
+  int32_t contact;             /* phase of the bushing end in the last step:
                                   2 no clearance/slack (xb = x), +1 / -1 in
                                   contact at x - g/2 / x + g/2, 0 floating
                                   free (F = 0), 3 held inside the clearance */
 } rtb_state;
+
+/* What one step cost and how well it converged (rtb_step_ex,
+ * rtb_evaluate_ex). Counts cover every implicit solve of the step, including
+ * the trial bushing positions of a clearance search. */
+typedef struct rtb_step_info {
+  int32_t iterations;           /* Newton iterations, all stages (RT) or
+                                   active-set iterations (STS) */
+  int32_t backtracks;           /* line-search halvings, all stages (RT) */
+  int32_t clearance_iterations; /* bushing responses of the clearance search
+                                   (0 without backlash) */
+  int32_t stages;               /* implicit stages of the committed response */
+  rtb_real residual;            /* final relative residual |H| / scale of the
+                                   committed response (max over its stages;
+                                   0 for STS, whose return map is exact) */
+  rtb_real clearance_residual;  /* |F| / (scale (|xb| + g)) of the free bushing
+                                   end when it is inside the gap, else 0 */
+} rtb_step_info;
 
 /* ------------------------------------------------------------------ */
 /* Set-up                                                              */
@@ -222,18 +274,18 @@ typedef struct rtb_state {
 
 /* Fill with the paper's section 3.4 example set (N=15; K0=1000, Kpa=800,
  * Kr=3000 N/mm, C0=40 N (s/mm)^0.2, alpha=0.2; STS: Ff=40 N). */
-rtb_status rtb_params_default(rtb_params *p, int model);
-rtb_status rtb_params_validate(const rtb_params *p);
+RTB_API rtb_status rtb_params_default(rtb_params *p, int model);
+RTB_API rtb_status rtb_params_validate(const rtb_params *p);
 /* rtb_params_validate that also names the offending field ("K0", "cells",
  * "reserved", "maxwell_tau", ...) in *field ("" when valid; field may be
  * NULL). The name is a static string. */
-rtb_status rtb_params_check(const rtb_params *p, const char **field);
-void rtb_settings_default(rtb_settings *s);
-const char *rtb_status_message(rtb_status status);
+RTB_API rtb_status rtb_params_check(const rtb_params *p, const char **field);
+RTB_API void rtb_settings_default(rtb_settings *s);
+RTB_API const char *rtb_status_message(rtb_status status);
 
 /* Initialise at rest with every cell DOF at its static equilibrium for the
  * displacement x0 (0 for a virgin bushing). */
-rtb_status rtb_state_init(rtb_state *s, const rtb_params *p, rtb_real x0);
+RTB_API rtb_status rtb_state_init(rtb_state *s, const rtb_params *p, rtb_real x0);
 
 /* ------------------------------------------------------------------ */
 /* Stepping                                                            */
@@ -242,40 +294,53 @@ rtb_status rtb_state_init(rtb_state *s, const rtb_params *p, rtb_real x0);
 /* Advance one step of length dt to displacement x; write the force.
  * On error (< 0) the state is unchanged and *force is not written.
  * `set` may be NULL. */
-rtb_status rtb_step(rtb_state *s, const rtb_params *p, const rtb_settings *set,
-                    rtb_real x, rtb_real dt, rtb_real *force);
+RTB_API rtb_status rtb_step(rtb_state *s, const rtb_params *p, const rtb_settings *set,
+                            rtb_real x, rtb_real dt, rtb_real *force);
 
 /* Evaluate a trial step without touching the committed state `s`: the result
- * goes into `trial` (may not alias `s`), its force into *force, and the
+ * goes into `trial` (may not alias `s`: RTB_ERR_ALIAS), its force into *force, and the
  * analytic tangent dF/dx of the discrete step into *dforce_dx (may be NULL).
  * A host's implicit iterations call this many times per step, then commit. */
-rtb_status rtb_evaluate(const rtb_state *s, const rtb_params *p,
-                        const rtb_settings *set, rtb_real x, rtb_real dt,
-                        rtb_state *trial, rtb_real *force, rtb_real *dforce_dx);
+RTB_API rtb_status rtb_evaluate(const rtb_state *s, const rtb_params *p,
+                                const rtb_settings *set, rtb_real x, rtb_real dt,
+                                rtb_state *trial, rtb_real *force, rtb_real *dforce_dx);
+
+/* As rtb_step and rtb_evaluate, and also report the step's cost and
+ * residuals into *info (may be NULL; not written on error). */
+RTB_API rtb_status rtb_step_ex(rtb_state *s, const rtb_params *p, const rtb_settings *set,
+                               rtb_real x, rtb_real dt, rtb_real *force, rtb_step_info *info);
+RTB_API rtb_status rtb_evaluate_ex(const rtb_state *s, const rtb_params *p,
+                                   const rtb_settings *set, rtb_real x, rtb_real dt,
+                                   rtb_state *trial, rtb_real *force, rtb_real *dforce_dx,
+                                   rtb_step_info *info);
 
 /* Make a trial state the committed one (a plain copy, provided for clarity). */
-rtb_status rtb_commit(rtb_state *s, const rtb_state *trial);
+RTB_API rtb_status rtb_commit(rtb_state *s, const rtb_state *trial);
 
 /* ------------------------------------------------------------------ */
 /* Inspection                                                          */
 /* ------------------------------------------------------------------ */
 
-/* Copy the N cell DOFs y_k into out[0..cap-1]; returns the count or < 0. */
-int rtb_cell_states(const rtb_state *s, rtb_real *out, int cap);
+/* Copy the first min(N, cap) cell DOFs y_k into out[0..cap-1]; returns that
+ * count (>= 0), or RTB_ERR_NULL, RTB_ERR_STATE, RTB_ERR_CAPACITY (cap < 0). */
+RTB_API int rtb_cell_states(const rtb_state *s, rtb_real *out, int cap);
 
 typedef struct rtb_info {
-  int abi_version;
-  int max_cells;
-  int scalar_bytes;
-  const char *version;   /* library version string, "major.minor.patch" */
-  const char *scalar;    /* "double" */
+  int32_t abi_version;
+  int32_t max_cells;
+  int32_t scalar_bytes;
+  int32_t params_bytes;    /* sizeof(rtb_params) of the library build */
+  int32_t state_bytes;     /* sizeof(rtb_state) */
+  int32_t settings_bytes;  /* sizeof(rtb_settings) */
+  const char *version;     /* library version string, "major.minor.patch" */
+  const char *scalar;      /* "double" */
 } rtb_info;
 
-void rtb_get_info(rtb_info *info);
+RTB_API void rtb_get_info(rtb_info *info);
 
 /* Static force for a displacement held forever: every dashpot has relaxed,
  * F = K0 x + x / (1/Kpa + N/Kr) (+ elastic extensions). RT only. */
-rtb_real rtb_static_force(const rtb_params *p, rtb_real x);
+RTB_API rtb_real rtb_static_force(const rtb_params *p, rtb_real x);
 
 #ifdef __cplusplus
 }

@@ -131,7 +131,8 @@ TEST(Header, Contents) {
   EXPECT_NE(h.find("#include \"rt_bushing.h\"\n"), std::string::npos);
   EXPECT_NE(h.find("#ifndef RTB_PARAMS_H_test_bushing_rt\n#define RTB_PARAMS_H_test_bushing_rt\n"),
             std::string::npos);
-  EXPECT_NE(h.find("typedef char test_bushing_rt_check_abi[(RTB_ABI_VERSION == 3) ? 1 : -1];"),
+  EXPECT_NE(h.find("typedef char test_bushing_rt_check_abi[(RTB_ABI_VERSION == " +
+                   std::to_string(RTB_ABI_VERSION) + ") ? 1 : -1];"),
             std::string::npos);
   EXPECT_NE(h.find("typedef char test_bushing_rt_check_scalar[(RTB_SCALAR_BYTES == 8) ? 1 : -1];"),
             std::string::npos);

@@ -46,7 +46,9 @@ const char *const kLibraryNames[] = {
     "RTB_ERR_ABI", "RTB_ERR_MODEL", "RTB_ERR_CELLS", "RTB_ERR_PARAM_NONFINITE",
     "RTB_ERR_PARAM_RANGE", "RTB_ERR_ALPHA", "RTB_ERR_RESERVED", "RTB_ERR_INPUT", "RTB_ERR_DT",
     "RTB_ERR_STATE", "RTB_ERR_OVERFLOW", "RTB_ERR_SETTINGS", "RTB_MODEL_RT", "RTB_MODEL_STS",
-    "RTB_INTEGRATOR_SDIRK2", "RTB_INTEGRATOR_BE", "RT_BUSHING_H"};
+    "RTB_INTEGRATOR_SDIRK2", "RTB_INTEGRATOR_BE", "RT_BUSHING_H", "rtb_step_info", "rtb_step_ex",
+    "rtb_evaluate_ex", "RTB_ERR_ALIAS", "RTB_ERR_CAPACITY", "RTB_API", "RTB_STACK_FRAME_MAX",
+    "RTB_STACK_DEPTH_MAX"};
 
 // Text safe inside a /* */ comment: no comment delimiters, no trigraphs, no
 // control characters.

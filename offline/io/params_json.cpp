@@ -198,6 +198,20 @@ rtb_params params_from_json_text(const std::string &text, const std::string &ori
     const size_t colon = what.find(": ", what.find("parse error"));
     if (colon != std::string::npos) what = what.substr(colon + 2);
     throw InputError(origin + ":" + std::to_string(line) + ": invalid JSON: " + what);
+  } catch (const nlohmann::json::exception &e) {
+    // Not a syntax error but a value the parser cannot hold (a number
+    // literal beyond double range: out_of_range.406), found by fuzzing. Its
+    // message quotes the literal; name the line where it first appears.
+    std::string what = e.what();
+    const size_t q0 = what.find('\''), q1 = what.rfind('\'');
+    size_t line = 1;
+    if (q0 != std::string::npos && q1 > q0) {
+      const size_t at = text.find(what.substr(q0 + 1, q1 - q0 - 1));
+      for (size_t i = 0; at != std::string::npos && i < at; ++i) line += text[i] == '\n';
+    }
+    const size_t tag = what.find("] ");
+    if (tag != std::string::npos) what = what.substr(tag + 2);
+    throw InputError(origin + ":" + std::to_string(line) + ": invalid JSON: " + what);
   }
   return params_from_json(doc, origin);
 }

@@ -94,9 +94,11 @@ extern "C" rtb_status rtb_stage_solve(const rtb_params *p, const rtb_settings *s
   }
 
   st->converged = 0;
+  st->backtracks = 0;
   int it = 0;
+  double scale = rnorm;
   for (;; ++it) {
-    double scale = rnorm;
+    scale = rnorm;
     for (int k = 0; k < n; ++k) scale = fmax(scale, fabs(f[k]));
     if (hnorm <= set->tol * scale || hnorm <= DBL_MIN) { st->converged = 1; break; }
     if (it >= set->max_iter) break;
@@ -133,7 +135,7 @@ extern "C" rtb_status rtb_stage_solve(const rtb_params *p, const rtb_settings *s
       }
       double ht2;
       const double ht = residual(ch, ft, vt, r, Ht, &ht2);
-      if (!(ht <= DBL_MAX) || ht2 > (1.0 - 2e-4 * t) * h2) continue;
+      if (!(ht <= DBL_MAX) || ht2 > (1.0 - 2e-4 * t) * h2) { ++st->backtracks; continue; }
       for (int k = 0; k < n; ++k) { f[k] = ft[k]; v[k] = vt[k]; H[k] = Ht[k]; }
       hnorm = ht;
       h2 = ht2;
@@ -143,6 +145,7 @@ extern "C" rtb_status rtb_stage_solve(const rtb_params *p, const rtb_settings *s
     if (!accepted) break;
   }
   st->iterations = it;
+  st->residual = hnorm <= DBL_MIN ? 0.0 : hnorm / scale; /* scale > 0 when H != 0 */
   for (int k = 0; k < n; ++k) {
     st->y[k] = st->c[k] + ch.h * v[k];
     if (!isfinite(st->y[k])) return RTB_ERR_OVERFLOW;

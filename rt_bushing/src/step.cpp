@@ -102,22 +102,40 @@ struct Response {
   double z, z_spec[RTB_MAX_BRANCHES];
   double F, dF;  /* force and total dF/dxb */
   int iterations;
+  int backtracks;
+  double residual;  /* max relative stage residual (RT) */
   rtb_status status;
 };
 
+/* Work of every response of a step, for rtb_step_info. */
+struct Cost {
+  int iterations, backtracks, responses;
+  void add(const Response &r) {
+    iterations += r.iterations;
+    backtracks += r.backtracks;
+    ++responses;
+  }
+};
+
 void respond(const rtb_state *s, const rtb_params *p, const rtb_settings *set,
-             const rtb_spectrum *sp, double xb, double dt, bool tangent, Response *r) {
+             const rtb_spectrum *sp, double xb, double dt, bool tangent, Response *r,
+             Cost *cost) {
   const int n = p->cells;
   double dy1 = 0.0;
+  r->backtracks = 0;
+  r->residual = 0.0;
   if (p->model == RTB_MODEL_RT) {
     r->status = rtb_chain_advance(p, set, s, xb, dt, r->st);
     const int ns = rtb_integrator_stages(p);
     memcpy(r->y, r->st[ns - 1].y, sizeof(double) * n);
     r->iterations = r->st[0].iterations + (ns == 2 ? r->st[1].iterations : 0);
+    r->backtracks = r->st[0].backtracks + (ns == 2 ? r->st[1].backtracks : 0);
+    r->residual = fmax(r->st[0].residual, ns == 2 ? r->st[1].residual : 0.0);
     if (tangent && r->status >= 0) dy1 = chain_dy1_dxb(p, r->st, dt);
   } else {
     r->status = rtb_sts_solve(p, s->y, xb, r->y, &r->iterations, tangent ? &dy1 : NULL);
   }
+  cost->add(*r);
   /* Branch memories; z evolves whenever its tau is set, so dF/dk is exact at k = 0. */
   rtb_maxwell_lin m;
   double dz = 0.0, dF_branches = 0.0;
@@ -161,19 +179,22 @@ Gap gap_of(const rtb_params *p, double x) {
  * carries no load, so xb = clamp(xb_free, lo, hi) with F(xb_free) = 0; F is
  * increasing in xb, so a safeguarded Newton/bisection finds it (for hi = inf
  * the bracket is first extended by Newton steps). Held end: xb stays where it
- * was, clamped into [lo, hi]. Bounded: at most 3 + RTB_BACKLASH_ITERS +
- * RTB_SLACK_EXTEND responses per step. */
-#define RTB_BACKLASH_ITERS 30
+ * was, clamped into [lo, hi]. Bounded: at most 3 + iters + RTB_SLACK_EXTEND
+ * responses per step. The response in *r is always the one at *xb_out (state,
+ * force and tangent agree); a search that runs out of iterations reports
+ * RTB_NOT_CONVERGED in r->status and its relative force residual in
+ * *residual. */
 #define RTB_SLACK_EXTEND 8
 static int phase_at(const Gap &g, double xb) { return xb == g.lo ? 1 : (xb == g.hi ? -1 : 0); }
 
 static void resolve_gap(const rtb_state *s, const rtb_params *p, const rtb_settings *set,
-                        const rtb_spectrum *sp, double x, double dt, Response *r, double *xb_out,
-                        int *contact) {
+                        const rtb_spectrum *sp, double x, double dt, int iters, Response *r,
+                        Cost *cost, double *xb_out, int *contact, double *residual) {
   const Gap g = gap_of(p, x);
   double xb = fmin(fmax(s->xb, g.lo), g.hi);
-  respond(s, p, set, sp, xb, dt, true, r);
+  respond(s, p, set, sp, xb, dt, true, r, cost);
   *xb_out = xb;
+  *residual = 0.0;
   if (g.held) { *contact = xb == g.lo ? 1 : (xb == g.hi ? -1 : 3); return; }
   *contact = phase_at(g, xb);
   if (r->status < 0) return;
@@ -183,13 +204,13 @@ static void resolve_gap(const rtb_state *s, const rtb_params *p, const rtb_setti
   if (r->F > 0.0) {
     b = xb;
     if (xb != g.lo) {
-      respond(s, p, set, sp, g.lo, dt, true, r);
+      respond(s, p, set, sp, g.lo, dt, true, r, cost);
       if (r->status < 0 || r->F >= 0.0) { *xb_out = g.lo; *contact = 1; return; }
     }
   } else {
     a = xb;
     if (isfinite(g.hi)) {
-      respond(s, p, set, sp, g.hi, dt, true, r);
+      respond(s, p, set, sp, g.hi, dt, true, r, cost);
       if (r->status < 0 || r->F <= 0.0) { *xb_out = g.hi; *contact = -1; return; }
     } else {
       /* Slack: extend a bracket upwards by doubled Newton steps. */
@@ -198,27 +219,39 @@ static void resolve_gap(const rtb_state *s, const rtb_params *p, const rtb_setti
       for (int e = 0; e < RTB_SLACK_EXTEND && !isfinite(b); ++e) {
         const double step = dFt > 0.0 ? -Ft / dFt : fabs(t - x) + p->backlash + 1e-9;
         t += 2.0 * step * (double)(1 << e);
-        respond(s, p, set, sp, t, dt, true, r);
+        respond(s, p, set, sp, t, dt, true, r, cost);
         if (r->status < 0) break;
         if (r->F > 0.0) b = t; else { a = t; Ft = r->F; dFt = r->dF; }
       }
-      if (!isfinite(b)) { *xb_out = a; *contact = 0; return; } /* best effort, bounded */
+      if (!isfinite(b)) { /* best effort, bounded: r is the response at a */
+        *xb_out = a;
+        *contact = 0;
+        if (r->status == RTB_OK) r->status = RTB_NOT_CONVERGED;
+        return;
+      }
     }
   }
   *contact = 0;
   const double scale = fabs(p->K0) + p->Kpa;
   const double width = b - a;
+  bool converged = false;
   xb = 0.5 * (a + b);
-  for (int it = 0; it < RTB_BACKLASH_ITERS; ++it) {
-    respond(s, p, set, sp, xb, dt, true, r);
+  for (int it = 0; it < iters; ++it) {
+    respond(s, p, set, sp, xb, dt, true, r, cost);
     if (r->status < 0) break;
     if (r->F > 0.0) b = xb; else a = xb;
-    if (fabs(r->F) <= set->tol * scale * (fabs(xb) + width) || b - a <= 4 * DBL_EPSILON * fabs(xb))
+    *residual = fabs(r->F) / (scale * (fabs(xb) + width));
+    if (fabs(r->F) <= set->tol * scale * (fabs(xb) + width) ||
+        b - a <= 4 * DBL_EPSILON * fabs(xb)) {
+      converged = true;
       break;
+    }
+    if (it + 1 == iters) break;  /* keep xb where r was computed */
     double nx = xb - r->F / r->dF;
     xb = (r->dF > 0.0 && nx > a && nx < b) ? nx : 0.5 * (a + b);
   }
   *xb_out = xb;
+  if (!converged && r->status == RTB_OK) r->status = RTB_NOT_CONVERGED;
 }
 
 static rtb_status check_call(const rtb_state *s, const rtb_params *p, double x, double dt) {
@@ -233,10 +266,11 @@ static rtb_status check_call(const rtb_state *s, const rtb_params *p, double x, 
   return RTB_OK;
 }
 
-extern "C" rtb_status rtb_step_detailed(const rtb_state *s, const rtb_params *p,
-                                        const rtb_settings *set_in, double x, double dt,
-                                        rtb_state *out, double *force, double *dforce_dx,
-                                        rtb_stage stages[2]) {
+extern "C" rtb_status rtb_step_core(const rtb_state *s, const rtb_params *p,
+                                    const rtb_settings *set_in, double x, double dt,
+                                    rtb_state *out, double *force, double *dforce_dx,
+                                    rtb_stage stages[2], rtb_step_info *info,
+                                    int backlash_iters) {
   rtb_status st = check_call(s, p, x, dt);
   if (st != RTB_OK) return st;
   rtb_settings set;
@@ -246,10 +280,14 @@ extern "C" rtb_status rtb_step_detailed(const rtb_state *s, const rtb_params *p,
   rtb_spectrum sp;
   rtb_spectrum_layout(p, &sp);
   Response r;
-  double xb = x;
+  Cost cost = {0, 0, 0};
+  double xb = x, clearance_residual = 0.0;
   int contact = 2;
-  if (p->backlash > 0.0 || p->slack != 0.0) resolve_gap(s, p, &set, &sp, x, dt, &r, &xb, &contact);
-  else respond(s, p, &set, &sp, xb, dt, dforce_dx != NULL, &r);
+  if (p->backlash > 0.0 || p->slack != 0.0)
+    resolve_gap(s, p, &set, &sp, x, dt, backlash_iters, &r, &cost, &xb, &contact,
+                &clearance_residual);
+  else
+    respond(s, p, &set, &sp, xb, dt, dforce_dx != NULL, &r, &cost);
   if (r.status < 0) return r.status;
 
   /* Inertia of the load path: F += m a with backward differences of x. */
@@ -288,7 +326,23 @@ extern "C" rtb_status rtb_step_detailed(const rtb_state *s, const rtb_params *p,
   if (force) *force = F;
   if (dforce_dx) *dforce_dx = dF;
   if (stages && p->model == RTB_MODEL_RT) memcpy(stages, r.st, sizeof r.st);
+  if (info) {
+    info->iterations = cost.iterations;
+    info->backtracks = cost.backtracks;
+    info->clearance_iterations = (p->backlash > 0.0 || p->slack != 0.0) ? cost.responses : 0;
+    info->stages = p->model == RTB_MODEL_RT ? rtb_integrator_stages(p) : 1;
+    info->residual = r.residual;
+    info->clearance_residual = contact == 0 ? clearance_residual : 0.0;  /* floating end */
+  }
   return r.status;
+}
+
+extern "C" rtb_status rtb_step_detailed(const rtb_state *s, const rtb_params *p,
+                                        const rtb_settings *set, double x, double dt,
+                                        rtb_state *out, double *force, double *dforce_dx,
+                                        rtb_stage stages[2]) {
+  return rtb_step_core(s, p, set, x, dt, out, force, dforce_dx, stages, NULL,
+                       RTB_BACKLASH_ITERS);
 }
 
 extern "C" rtb_status rtb_state_init(rtb_state *s, const rtb_params *p, rtb_real x0) {
@@ -316,12 +370,20 @@ extern "C" rtb_status rtb_state_init(rtb_state *s, const rtb_params *p, rtb_real
   return RTB_OK;
 }
 
+extern "C" rtb_status rtb_evaluate_ex(const rtb_state *s, const rtb_params *p,
+                                      const rtb_settings *set, rtb_real x, rtb_real dt,
+                                      rtb_state *trial, rtb_real *force, rtb_real *dforce_dx,
+                                      rtb_step_info *info) {
+  if (!s || !trial || !force) return RTB_ERR_NULL;
+  if (trial == s) return RTB_ERR_ALIAS;
+  return rtb_step_core(s, p, set, x, dt, trial, force, dforce_dx, NULL, info,
+                       RTB_BACKLASH_ITERS);
+}
+
 extern "C" rtb_status rtb_evaluate(const rtb_state *s, const rtb_params *p,
                                    const rtb_settings *set, rtb_real x, rtb_real dt,
                                    rtb_state *trial, rtb_real *force, rtb_real *dforce_dx) {
-  if (!trial || !force) return RTB_ERR_NULL;
-  if (trial == s) return RTB_ERR_NULL;
-  return rtb_step_detailed(s, p, set, x, dt, trial, force, dforce_dx, NULL);
+  return rtb_evaluate_ex(s, p, set, x, dt, trial, force, dforce_dx, NULL);
 }
 
 extern "C" rtb_status rtb_commit(rtb_state *s, const rtb_state *trial) {
@@ -331,11 +393,18 @@ extern "C" rtb_status rtb_commit(rtb_state *s, const rtb_state *trial) {
   return RTB_OK;
 }
 
-extern "C" rtb_status rtb_step(rtb_state *s, const rtb_params *p, const rtb_settings *set,
-                               rtb_real x, rtb_real dt, rtb_real *force) {
+extern "C" rtb_status rtb_step_ex(rtb_state *s, const rtb_params *p, const rtb_settings *set,
+                                  rtb_real x, rtb_real dt, rtb_real *force,
+                                  rtb_step_info *info) {
   if (!force) return RTB_ERR_NULL;
   rtb_state next;
-  rtb_status st = rtb_step_detailed(s, p, set, x, dt, &next, force, NULL, NULL);
+  rtb_status st = rtb_step_core(s, p, set, x, dt, &next, force, NULL, NULL, info,
+                                RTB_BACKLASH_ITERS);
   if (st >= 0) *s = next;
   return st;
+}
+
+extern "C" rtb_status rtb_step(rtb_state *s, const rtb_params *p, const rtb_settings *set,
+                               rtb_real x, rtb_real dt, rtb_real *force) {
+  return rtb_step_ex(s, p, set, x, dt, force, NULL);
 }
