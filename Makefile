@@ -4,6 +4,7 @@
 #   make demo     build, then run `build/rtb demo`
 #   make bench    build, then run the Google Benchmark suite (JSON in build/bench.json)
 #   make report   build, then run `build/rtb report`
+#   make fmu      build/fmu/rt_bushing.fmu, FMI 2.0 co-simulation (PARAMS=FILE: a specific bushing)
 #   make clean    remove the build trees
 # Every target except clean first checks the Debian packages it needs (deps).
 
@@ -22,10 +23,10 @@ CTEST     ?= ctest
 SUBMAKE_ENV := env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL
 
 DEB_PACKAGES := cmake g++ make libgtest-dev libbenchmark-dev libeigen3-dev \
-                nlohmann-json3-dev gnuplot-nox
+                nlohmann-json3-dev gnuplot-nox zip unzip libxml2-dev
 
 .PHONY: all deps configure build test test-release check-symbols test-asan \
-        demo bench report clean
+        demo bench report fmu clean
 
 all: build
 
@@ -50,8 +51,14 @@ deps:
 	fi
 
 # ------------------------------------------------------------------ build
+# The bushing compiled into the FMU: empty = the paper's section 3.4 set on
+# every axis; else a six-axis JSON, a single-axis JSON (all six axes) or a
+# header written by `rtb header` (its constant named after the file). Passed
+# on every configure, so a plain `make test` goes back to the default.
+PARAMS ?=
 configure: deps
-	$(CMAKE) -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release
+	$(CMAKE) -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release \
+	  -DRTB_FMU_PARAMS="$(if $(PARAMS),$(abspath $(PARAMS)))"
 
 build: configure
 	$(SUBMAKE_ENV) $(CMAKE) --build $(BUILD) --parallel $(JOBS)
@@ -73,7 +80,7 @@ check-symbols: build
 ASAN_OPT_FLAGS ?= -O1 -g1 -DNDEBUG
 test-asan: deps
 	$(CMAKE) -S . -B $(ASAN) -DRTB_SANITIZE=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-	  -DRTB_BUILD_BENCH=OFF \
+	  -DRTB_BUILD_BENCH=OFF -DRTB_FMU_PARAMS= \
 	  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="$(ASAN_OPT_FLAGS)" \
 	  -DCMAKE_C_FLAGS_RELWITHDEBINFO="$(ASAN_OPT_FLAGS)"
 	$(SUBMAKE_ENV) $(CMAKE) --build $(ASAN) --parallel $(JOBS)
@@ -99,6 +106,11 @@ report: build
 bench: build
 	@if [ ! -x $(BUILD)/bench/rtb_bench ]; then echo "$(BUILD)/bench/rtb_bench was not built (no bench/*_bench.cpp?)"; exit 1; fi
 	./$(BUILD)/bench/rtb_bench --benchmark_out=$(BUILD)/bench.json --benchmark_out_format=json
+
+# FMI 2.0 co-simulation FMU (zip from Debian; see README "Importing the FMU").
+fmu: configure
+	$(SUBMAKE_ENV) $(CMAKE) --build $(BUILD) --parallel $(JOBS) --target fmu
+	@echo "built $(BUILD)/fmu/rt_bushing.fmu$(if $(PARAMS), with $(PARAMS))"
 
 clean:
 	rm -rf $(BUILD) $(ASAN)
