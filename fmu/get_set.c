@@ -53,9 +53,15 @@ static fmi2Status check_refs(fmu_instance *in, const char *func, slot_fn slot, i
 }
 
 /* In initialization mode the outputs are the static forces the element will
- * start with (rtb_bushing6_init at the current inputs), computed on demand. */
-static fmi2Status refresh_initial_outputs(fmu_instance *in, const char *func) {
+ * start with (rtb_bushing6_init at the current inputs), computed when asked
+ * for (a get of parameters alone does not need a valid set). */
+static fmi2Status refresh_initial_outputs(fmu_instance *in, const char *func,
+                                          const fmi2ValueReference vr[], size_t nvr) {
   if (in->d.mode != FMU_INITIALIZATION) return fmi2OK;
+  int role = 0, outputs = 0;
+  for (size_t i = 0; i < nvr; ++i)
+    outputs += fmu_real_slot(&in->d, vr[i], &role) && role == FMU_OUTPUT;
+  if (!outputs) return fmi2OK;
   rtb_bushing6_state s;
   int bad = -1;
   const rtb_status st = rtb_bushing6_init(&s, &in->d.params, in->d.x, &bad);
@@ -75,7 +81,7 @@ static fmi2Status transfer(fmi2Component c, const char *func, fmu_type type, int
   if (check_call(in, func, setting ? SET_MODES : GET_MODES, vr, nvr, setting ? src : dst) !=
           fmi2OK ||
       check_refs(in, func, slot, setting, vr, nvr) != fmi2OK ||
-      (!setting && type == FMU_REAL && refresh_initial_outputs(in, func) != fmi2OK))
+      (!setting && type == FMU_REAL && refresh_initial_outputs(in, func, vr, nvr) != fmi2OK))
     return fmi2Error;
   int role;
   for (size_t i = 0; i < nvr; ++i) {
