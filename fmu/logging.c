@@ -78,6 +78,11 @@ fmi2Status fmu_require_mode(fmu_instance *in, const char *func, unsigned mask) {
 fmi2Status fmu_fail_rtb(fmu_instance *in, fmi2Status status, const char *func, rtb_status st,
                         int bad_axis) {
   const char *axis = rtb_axis_name(bad_axis);
+  const char *field = "";
+  if (axis && in) rtb_params_check(&in->d.params.axis[bad_axis], &field);
+  if (axis && field && field[0])
+    return fmu_fail(in, status, "%s: axis %s: parameter %s.%s: %s (rt_bushing status %d)", func,
+                    axis, axis, field, rtb_status_message(st), (int)st);
   if (axis)
     return fmu_fail(in, status, "%s: axis %s: %s (rt_bushing status %d)", func, axis,
                     rtb_status_message(st), (int)st);

@@ -54,16 +54,16 @@ static void header(FILE *f) {
 
 /* Each distinct unit once, in order of first use. */
 static void unit_definitions(FILE *f, const rtb_bushing6_params *p) {
-  const char *seen[64];
+  char seen[64][40];
   int n = 0;
   fmu_var v;
   fputs("  <UnitDefinitions>\n", f);
   for (int i = 0; fmu_variable(i, p, &v); ++i) {
-    if (!v.unit) continue;
+    if (!v.unit[0]) continue;
     int k = 0;
     while (k < n && strcmp(seen[k], v.unit) != 0) ++k;
     if (k < n || n == 64) continue;
-    seen[n++] = v.unit;
+    snprintf(seen[n++], sizeof seen[0], "%s", v.unit);
     fputs("    <Unit name=\"", f);
     put_escaped(f, v.unit);
     fputs("\"/>\n", f);
@@ -99,7 +99,7 @@ static void variable(FILE *f, const fmu_var *v) {
   if (v->type == FMU_REAL) {
     fputs("<Real", f);
     if (v->role != FMU_OUTPUT) fprintf(f, " start=\"%.17g\"", v->start);
-    if (v->unit) {
+    if (v->unit[0]) {
       fputs(" unit=\"", f);
       put_escaped(f, v->unit);
       fputs("\"", f);

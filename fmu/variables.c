@@ -4,42 +4,20 @@
 
 #include <stddef.h>
 #include <stdio.h>
+#include <string.h>
 
 typedef struct real_field {
   const char *name;
-  size_t offset;            /* in rtb_params */
-  const char *unit_trans;   /* x y z */
-  const char *unit_rot;     /* rx ry rz */
+  size_t offset;       /* in rtb_params */
+  const char *unit;    /* generic: "force/length", "-", ... (RTB_PARAM_FIELDS) */
   const char *description;
 } real_field;
 
-/* Every physical field and model setting of rtb_params that is a real. A
- * field added to rtb_params later and missing here keeps its compiled-in
- * value (it is not tunable) -- add a row to make it so. */
-static const real_field kRealFields[] = {
-    {"K0", offsetof(rtb_params, K0), "N/mm", "N.mm/rad", "global elastic stiffness, >= 0"},
-    {"Kpa", offsetof(rtb_params, Kpa), "N/mm", "N.mm/rad", "low-amplitude stiffness, > 0"},
-    {"Kr", offsetof(rtb_params, Kr), "N/mm", "N.mm/rad", "cell spring stiffness, > 0"},
-    {"C0", offsetof(rtb_params, C0), "N.(s/mm)^alpha", "N.mm.(s/rad)^alpha",
-     "RT dashpot coefficient, > 0, eq. (1)"},
-    {"alpha", offsetof(rtb_params, alpha), NULL, NULL, "RT dashpot exponent in [0.001, 1)"},
-    {"Ff", offsetof(rtb_params, Ff), "N", "N.mm", "STS friction threshold, > 0 (STS only)"},
-    {"k3", offsetof(rtb_params, k3), "N/mm3", "N.mm/rad3", "cubic spring"},
-    {"k_asym", offsetof(rtb_params, k_asym), "N/mm", "N.mm/rad",
-     "tension/compression asymmetry, |k_asym| <= K0"},
-    {"maxwell_k", offsetof(rtb_params, maxwell_k), "N/mm", "N.mm/rad",
-     "Maxwell branch stiffness, >= 0"},
-    {"maxwell_tau", offsetof(rtb_params, maxwell_tau), "s", "s", "Maxwell relaxation time"},
-    {"viscous_c", offsetof(rtb_params, viscous_c), "N.s/mm", "N.mm.s/rad",
-     "parallel linear dashpot, >= 0"},
-    {"mass", offsetof(rtb_params, mass), "N.s2/mm", "N.mm.s2/rad", "inertia in the load path"},
-    {"backlash", offsetof(rtb_params, backlash), "mm", "rad", "total clearance in series, >= 0"},
-    {"mullins", offsetof(rtb_params, mullins), NULL, NULL, "Mullins softening fraction in [0, 1)"},
-    {"smoothing", offsetof(rtb_params, smoothing), "s/mm", "s/rad",
-     "eq. (14) sigmoid smoothing, 0 = off"},
-    {"sat_force", offsetof(rtb_params, sat_force), "N", "N.mm", "softening spring force, >= 0"},
-    {"sat_disp", offsetof(rtb_params, sat_disp), "mm", "rad", "softening spring displacement"},
-};
+/* Every real field of rtb_params, from the library's own list, so a field
+ * added there is a tunable parameter here without a change. */
+#define FMU_REAL_FIELD(name, rule, kind, unit, text) {#name, offsetof(rtb_params, name), unit, text},
+static const real_field kRealFields[] = {RTB_PARAM_FIELDS(FMU_REAL_FIELD)};
+#undef FMU_REAL_FIELD
 #define N_REAL_FIELDS ((int)(sizeof kRealFields / sizeof kRealFields[0]))
 typedef char check_stride[(N_REAL_FIELDS <= (int)FMU_AXIS_STRIDE_REAL) ? 1 : -1];
 
@@ -53,14 +31,34 @@ static const char *const kIntDescriptions[3] = {
 
 static int is_rot(int a) { return a >= RTB_AXIS_RX; }
 
+/* A generic unit of RTB_PARAM_FIELDS in the FMU's units: force -> N or N.mm,
+ * length -> mm or rad, time -> s, a blank -> '.'; "-" -> "" (none). E.g.
+ * "force (time/length)^alpha" -> "N.(s/mm)^alpha" on x, "N.mm.(s/rad)^alpha" on rx. */
+static void concrete_unit(const char *generic, int rot, char *out, size_t cap) {
+  size_t n = 0;
+  out[0] = '\0';
+  if (!generic || strcmp(generic, "-") == 0) return;
+  for (const char *c = generic; *c && n + 6 < cap;) {
+    const char *word = NULL;
+    size_t skip = 1;
+    if (strncmp(c, "force", 5) == 0) word = rot ? "N.mm" : "N", skip = 5;
+    else if (strncmp(c, "length", 6) == 0) word = rot ? "rad" : "mm", skip = 6;
+    else if (strncmp(c, "time", 4) == 0) word = "s", skip = 4;
+    else if (*c == ' ') word = ".";
+    if (word) n += (size_t)snprintf(out + n, cap - n, "%s", word);
+    else out[n++] = *c, out[n] = '\0';
+    c += skip;
+  }
+}
+
 static void fill(fmu_var *v, const char *axis, const char *name, fmi2ValueReference vr, int type,
-                 int role, const char *unit, const char *description, double start) {
+                 int role, const char *unit, int rot, const char *description, double start) {
   if (axis) snprintf(v->name, sizeof v->name, "%s.%s", axis, name);
   else snprintf(v->name, sizeof v->name, "%s", name);
   v->vr = vr;
   v->type = type;
   v->role = role;
-  v->unit = unit;
+  concrete_unit(unit, rot, v->unit, sizeof v->unit);
   v->description = description;
   v->start = start;
 }
@@ -68,14 +66,14 @@ static void fill(fmu_var *v, const char *axis, const char *name, fmi2ValueRefere
 int fmu_variable(int i, const rtb_bushing6_params *p, fmu_var *v) {
   if (i < 0) return 0;
   if (i < RTB_AXES) {
-    fill(v, NULL, rtb_axis_name(i), FMU_VR_INPUT + i, FMU_REAL, FMU_INPUT,
-         is_rot(i) ? "rad" : "mm", is_rot(i) ? "rotation" : "displacement", 0.0);
+    fill(v, NULL, rtb_axis_name(i), FMU_VR_INPUT + i, FMU_REAL, FMU_INPUT, "length", is_rot(i),
+         is_rot(i) ? "rotation" : "displacement", 0.0);
     return 1;
   }
   i -= RTB_AXES;
   if (i < RTB_AXES) {
-    fill(v, NULL, kOutputNames[i], FMU_VR_OUTPUT + i, FMU_REAL, FMU_OUTPUT,
-         is_rot(i) ? "N.mm" : "N", is_rot(i) ? "moment" : "force", 0.0);
+    fill(v, NULL, kOutputNames[i], FMU_VR_OUTPUT + i, FMU_REAL, FMU_OUTPUT, "force", is_rot(i),
+         is_rot(i) ? "moment" : "force", 0.0);
     return 1;
   }
   i -= RTB_AXES;
@@ -84,16 +82,16 @@ int fmu_variable(int i, const rtb_bushing6_params *p, fmu_var *v) {
   const char *ax = rtb_axis_name(a);
   const rtb_params *q = &p->axis[a];
   if (k == 0) {
-    fill(v, ax, "active", FMU_VR_BOOL_PARAM + a, FMU_BOOLEAN, FMU_FIXED, NULL,
+    fill(v, ax, "active", FMU_VR_BOOL_PARAM + a, FMU_BOOLEAN, FMU_FIXED, NULL, 0,
          "axis on; off gives zero force", p->active[a]);
   } else if (k < 4) {
     const int val = k == 1 ? q->model : k == 2 ? q->cells : q->integrator;
     fill(v, ax, kIntNames[k - 1], FMU_VR_INT_PARAM + FMU_AXIS_STRIDE_INT * a + (k - 1),
-         FMU_INTEGER, FMU_FIXED, NULL, kIntDescriptions[k - 1], val);
+         FMU_INTEGER, FMU_FIXED, NULL, 0, kIntDescriptions[k - 1], val);
   } else {
     const real_field *f = &kRealFields[k - 4];
     fill(v, ax, f->name, FMU_VR_REAL_PARAM + FMU_AXIS_STRIDE_REAL * a + (k - 4), FMU_REAL,
-         FMU_TUNABLE, is_rot(a) ? f->unit_rot : f->unit_trans, f->description,
+         FMU_TUNABLE, f->unit, is_rot(a), f->description,
          *(const double *)((const char *)q + f->offset));
   }
   return 1;

@@ -4,9 +4,10 @@
  * Value references (unique over all types):
  *   Real     0..5    inputs  x y z [mm], rx ry rz [rad]
  *            6..11   outputs fx fy fz [N], mx my mz [N mm]
- *            100 + 20 a + k   tunable parameter k of axis a (FMU_REAL_FIELDS)
- *   Integer  300 + 10 a + k   fixed: a.model (1 RT, 2 STS), a.cells, a.integrator
- *   Boolean  400 + a          fixed: a.active
+ *            100 + 50 a + k   tunable parameter k of axis a: the k-th field of
+ *                             RTB_PARAM_FIELDS (rt_bushing.h), all of them
+ *   Integer  1000 + 10 a + k  fixed: a.model (1 RT, 2 STS), a.cells, a.integrator
+ *   Boolean  2000 + a         fixed: a.active
  * with a = 0..5 for x y z rx ry rz.
  */
 #ifndef RTB_FMU_VARIABLES_H
@@ -25,9 +26,9 @@ typedef enum {
 #define FMU_VR_INPUT 0u
 #define FMU_VR_OUTPUT 6u
 #define FMU_VR_REAL_PARAM 100u
-#define FMU_VR_INT_PARAM 300u
-#define FMU_VR_BOOL_PARAM 400u
-#define FMU_AXIS_STRIDE_REAL 20u
+#define FMU_VR_INT_PARAM 1000u
+#define FMU_VR_BOOL_PARAM 2000u
+#define FMU_AXIS_STRIDE_REAL 50u
 #define FMU_AXIS_STRIDE_INT 10u
 
 typedef struct fmu_var {
@@ -35,7 +36,7 @@ typedef struct fmu_var {
   fmi2ValueReference vr;
   int type;                   /* fmu_type */
   int role;                   /* fmu_role */
-  const char *unit;           /* NULL: dimensionless */
+  char unit[40];              /* "": dimensionless */
   const char *description;
   double start;               /* start value (Integer/Boolean too, exactly) */
 } fmu_var;

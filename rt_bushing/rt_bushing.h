@@ -293,7 +293,8 @@ rtb_real rtb_static_force(const rtb_params *p, rtb_real x);
  * N, s and rad: input rad, output N mm; K0, Kpa, Kr in N mm/rad; C0 in
  * N mm (s/rad)^alpha; k3 in N mm/rad^3; viscous_c in N mm s/rad; mass in
  * N mm s^2/rad (rotary inertia, tonne mm^2); backlash and sat_disp in rad;
- * Ff and sat_force in N mm.
+ * Ff and sat_force in N mm; every other field of RTB_PARAM_FIELDS likewise
+ * (its "length" is rad, its "force" N mm).
  *
  * Guarantees are those of the single-axis calls: no heap, bounded work
  * (six single-axis steps), and all-or-nothing commit: on an error in ANY axis

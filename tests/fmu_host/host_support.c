@@ -59,24 +59,16 @@ fmi2ValueReference vr_of(const md_info *md, const char *name) {
   return v ? v->vr : 0xFFFFFFFFu;
 }
 
-/* The real fields of rtb_params (rt_bushing.h) by their names. */
+/* The real fields of rtb_params by their names, from the library's public
+ * list (rt_bushing.h, RTB_PARAM_FIELDS): the reference the FMU is checked
+ * against, not the FMU's own table. */
+#define HOST_FIELD(name, rule, kind, unit, text) {#name, offsetof(rtb_params, name)},
 static const struct {
   const char *name;
   size_t offset;
-} kFields[] = {
-    {"K0", offsetof(rtb_params, K0)},         {"Kpa", offsetof(rtb_params, Kpa)},
-    {"Kr", offsetof(rtb_params, Kr)},         {"C0", offsetof(rtb_params, C0)},
-    {"alpha", offsetof(rtb_params, alpha)},   {"Ff", offsetof(rtb_params, Ff)},
-    {"k3", offsetof(rtb_params, k3)},         {"k_asym", offsetof(rtb_params, k_asym)},
-    {"maxwell_k", offsetof(rtb_params, maxwell_k)},
-    {"maxwell_tau", offsetof(rtb_params, maxwell_tau)},
-    {"viscous_c", offsetof(rtb_params, viscous_c)},
-    {"mass", offsetof(rtb_params, mass)},     {"backlash", offsetof(rtb_params, backlash)},
-    {"mullins", offsetof(rtb_params, mullins)},
-    {"smoothing", offsetof(rtb_params, smoothing)},
-    {"sat_force", offsetof(rtb_params, sat_force)},
-    {"sat_disp", offsetof(rtb_params, sat_disp)},
-};
+} kFields[] = {RTB_PARAM_FIELDS(HOST_FIELD)};
+#undef HOST_FIELD
+#define N_FIELDS ((int)(sizeof kFields / sizeof kFields[0]))
 
 static int set_field(rtb_params *q, int *active, const md_var *v, const char *field) {
   if (strcmp(field, "active") == 0) {
@@ -86,7 +78,7 @@ static int set_field(rtb_params *q, int *active, const md_var *v, const char *fi
   if (strcmp(field, "model") == 0) return q->model = atoi(v->start), 1;
   if (strcmp(field, "cells") == 0) return q->cells = atoi(v->start), 1;
   if (strcmp(field, "integrator") == 0) return q->integrator = atoi(v->start), 1;
-  for (size_t k = 0; k < sizeof kFields / sizeof kFields[0]; ++k)
+  for (int k = 0; k < N_FIELDS; ++k)
     if (strcmp(field, kFields[k].name) == 0) {
       *(double *)((char *)q + kFields[k].offset) = strtod(v->start, NULL);
       return 1;
@@ -112,7 +104,7 @@ int reference_params(const md_info *md, rtb_bushing6_params *p) {
     }
     ++n;
   }
-  CHECK(n == RTB_AXES * 21, "%d parameters, expected 6 x 21", n);
+  CHECK(n == RTB_AXES * (4 + N_FIELDS), "%d parameters, expected 6 x %d", n, 4 + N_FIELDS);
   return 1;
 }
 
@@ -124,7 +116,7 @@ int write_params_json(const char *path, const rtb_params *p) {
           p->integrator == RTB_INTEGRATOR_BE ? "be" : "sdirk2", p->smoothing);
   fprintf(f, " \"params\": {");
   int first = 1;
-  for (size_t k = 0; k < sizeof kFields / sizeof kFields[0]; ++k) {
+  for (int k = 0; k < N_FIELDS; ++k) {
     if (strcmp(kFields[k].name, "smoothing") == 0) continue; /* a top-level key */
     fprintf(f, "%s\"%s\": %.17g", first ? "" : ", ", kFields[k].name,
             *(const double *)((const char *)p + kFields[k].offset));

@@ -397,7 +397,8 @@ static void test_bad_calls(const fmu_file *f) {
   set_real(&s, "x.alpha", 5.0);
   x[RTB_AXIS_RY] = 0.0;
   EXPECT_REFUSED(&s, sim_step(&s, x, 1e-3, after), fmi2Error);
-  CHECK(strstr(s.log.last, "axis x") != NULL, "message does not name the axis: %s", s.log.last);
+  CHECK(strstr(s.log.last, "x.alpha") != NULL, "message does not name the parameter: %s",
+        s.log.last);
   revive(&s);
   /* Functions that do not apply to a co-simulation FMU. */
   double r = 0;
