@@ -12,13 +12,18 @@ fi
 stage=$1 md=$2 out=$3
 files=(modelDescription.xml binaries/linux64/rt_bushing.so)
 "$md" "$stage/modelDescription.xml"
+# Zip copies with fixed timestamps, so the build outputs keep theirs (and
+# are not relinked on the next build).
+outdir=$(cd "$(dirname "$out")" && pwd)
+pack="$outdir/.$(basename "$out").pack.$$"
+tmp="$outdir/.$(basename "$out").tmp.$$"
+rm -rf "$pack" "$tmp"
+trap 'rm -rf "$pack" "$tmp"' EXIT
 for f in "${files[@]}"; do
   [ -f "$stage/$f" ] || { echo "package_fmu: missing $stage/$f" >&2; exit 1; }
-  TZ=UTC touch -d '1980-01-02 00:00:00' "$stage/$f"
+  mkdir -p "$pack/$(dirname "$f")"
+  cp "$stage/$f" "$pack/$f"
+  TZ=UTC touch -d '1980-01-02 00:00:00' "$pack/$f"
 done
-tmp="$(cd "$(dirname "$out")" && pwd)/.$(basename "$out").tmp.$$"
-rm -f "$tmp"
-trap 'rm -f "$tmp"' EXIT
-(cd "$stage" && TZ=UTC zip -X -D -q -9 "$tmp" "${files[@]}")
+(cd "$pack" && TZ=UTC zip -X -D -q -9 "$tmp" "${files[@]}")
 mv -f "$tmp" "$out"
-trap - EXIT

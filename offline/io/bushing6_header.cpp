@@ -15,10 +15,14 @@ std::string emit_bushing6_header(const rtb_bushing6_params &p_in, const Bushing6
   rtb_bushing6_params p = p_in;
   int bad = -1;
   const rtb_status st = rtb_bushing6_validate(&p, &bad);
-  if (st != RTB_OK)
+  if (st != RTB_OK) {
+    const char *field = "";
+    if (bad >= 0) rtb_params_check(&p.axis[bad], &field);
     throw InputError(std::string("cannot write a header for invalid parameters") +
                      (bad >= 0 ? std::string(" on axis ") + rtb_axis_name(bad) : std::string()) +
-                     ": " + rtb_status_message(st));
+                     (field && field[0] ? std::string(", field ") + field : std::string()) + ": " +
+                     rtb_status_message(st));
+  }
   int max_cells = 1;
   for (int a = 0; a < RTB_AXES; ++a) {
     if (!p.active[a]) rtb_params_default(&p.axis[a], RTB_MODEL_RT);
