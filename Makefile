@@ -5,6 +5,7 @@
 #   make bench    build, then run the Google Benchmark suite (JSON in build/bench.json)
 #   make report   build, then run `build/rtb report`
 #   make fuzz     libFuzzer targets (clang-14) for FUZZ_SECONDS each, in build-fuzz/
+#   make fmu      build/fmu/rt_bushing.fmu, FMI 2.0 co-simulation (PARAMS=FILE: a specific bushing)
 #   make clean    remove the build trees
 # Every target except clean first checks the Debian packages it needs (deps).
 
@@ -23,13 +24,13 @@ CTEST     ?= ctest
 SUBMAKE_ENV := env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL
 
 DEB_PACKAGES := cmake g++ make libgtest-dev libbenchmark-dev libeigen3-dev \
-                nlohmann-json3-dev gnuplot-nox
+                nlohmann-json3-dev gnuplot-nox zip unzip libxml2-dev
 # Only `make fuzz` needs clang and libFuzzer; `make test` replays the seed
 # corpus with the gcc build instead (fuzz/CMakeLists.txt).
 FUZZ_PACKAGES := cmake make clang-14 libfuzzer-14-dev nlohmann-json3-dev
 
 .PHONY: all deps fuzz-deps configure build test test-release check-symbols test-asan \
-        demo bench report fuzz clean
+        demo bench report fuzz fmu clean
 
 all: build
 
@@ -62,8 +63,14 @@ fuzz-deps:
 	$(call ensure_packages,$(FUZZ_PACKAGES))
 
 # ------------------------------------------------------------------ build
+# The bushing compiled into the FMU: empty = the paper's section 3.4 set on
+# every axis; else a six-axis JSON, a single-axis JSON (all six axes) or a
+# header written by `rtb header` (its constant named after the file). Passed
+# on every configure, so a plain `make test` goes back to the default.
+PARAMS ?=
 configure: deps
-	$(CMAKE) -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release
+	$(CMAKE) -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release \
+	  -DRTB_FMU_PARAMS="$(if $(PARAMS),$(abspath $(PARAMS)))"
 
 build: configure
 	$(SUBMAKE_ENV) $(CMAKE) --build $(BUILD) --parallel $(JOBS)
@@ -85,7 +92,7 @@ check-symbols: build
 ASAN_OPT_FLAGS ?= -O1 -g1 -DNDEBUG
 test-asan: deps
 	$(CMAKE) -S . -B $(ASAN) -DRTB_SANITIZE=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-	  -DRTB_BUILD_BENCH=OFF \
+	  -DRTB_BUILD_BENCH=OFF -DRTB_FMU_PARAMS= \
 	  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="$(ASAN_OPT_FLAGS)" \
 	  -DCMAKE_C_FLAGS_RELWITHDEBINFO="$(ASAN_OPT_FLAGS)"
 	$(SUBMAKE_ENV) $(CMAKE) --build $(ASAN) --parallel $(JOBS)
@@ -135,6 +142,10 @@ fuzz: fuzz-deps
 	  grep -E '^stat::(number_of_executed_units|new_units_added)' $(FUZZ)/$$t.log | tr '\n' ' '; echo; \
 	done
 	@echo "make fuzz: $(words $(FUZZ_TARGETS)) targets, $(FUZZ_SECONDS) s each, no crash"
+# FMI 2.0 co-simulation FMU (zip from Debian; see README "Importing the FMU").
+fmu: configure
+	$(SUBMAKE_ENV) $(CMAKE) --build $(BUILD) --parallel $(JOBS) --target fmu
+	@echo "built $(BUILD)/fmu/rt_bushing.fmu$(if $(PARAMS), with $(PARAMS))"
 
 clean:
 	rm -rf $(BUILD) $(ASAN) $(FUZZ)

@@ -342,6 +342,79 @@ RTB_API void rtb_get_info(rtb_info *info);
  * F = K0 x + x / (1/Kpa + N/Kr) (+ elastic extensions). RT only. */
 RTB_API rtb_real rtb_static_force(const rtb_params *p, rtb_real x);
 
+/* ================================================================== */
+/* Six-axis bushing                                                    */
+/* ================================================================== */
+/*
+ * A chassis bushing as six independent channels (Adams BUSHING style):
+ * translations x, y, z and rotations rx, ry, rz. Each channel is a complete
+ * single-axis element with its own rtb_params (RT or STS, any extensions, its
+ * own N), embedded by value; the channels do not couple, so the 6x6 tangent
+ * is diagonal. An axis that is off gives zero force and zero stiffness, and
+ * its input is ignored.
+ *
+ * Units of the rotational channels: the element is unit-agnostic, so a
+ * rotational channel reads "length" as angle and "force" as moment. With mm,
+ * N, s and rad: input rad, output N mm; K0, Kpa, Kr in N mm/rad; C0 in
+ * N mm (s/rad)^alpha; k3 in N mm/rad^3; viscous_c in N mm s/rad; mass in
+ * N mm s^2/rad (rotary inertia, tonne mm^2); backlash and sat_disp in rad;
+ * Ff and sat_force in N mm; every other field of RTB_PARAM_FIELDS likewise
+ * (its "length" is rad, its "force" N mm).
+ *
+ * Guarantees are those of the single-axis calls: no heap, bounded work
+ * (six single-axis steps), and all-or-nothing commit: on an error in ANY axis
+ * the committed state is unchanged and no force is written.
+ *
+ *   rtb_bushing6_params p;  rtb_bushing6_params_default(&p, RTB_MODEL_RT);
+ *   rtb_bushing6_state  s;  rtb_bushing6_init(&s, &p, NULL, NULL);
+ *   double x[6] = {dx, dy, dz, ax, ay, az}, F[6];   // F = fx fy fz mx my mz
+ *   int bad;  rtb_status st = rtb_bushing6_step(&s, &p, NULL, x, dt, F, &bad);
+ */
+
+#define RTB_AXES 6
+
+typedef enum rtb_axis {
+  RTB_AXIS_X = 0, RTB_AXIS_Y = 1, RTB_AXIS_Z = 2,   /* translations -> fx fy fz */
+  RTB_AXIS_RX = 3, RTB_AXIS_RY = 4, RTB_AXIS_RZ = 5 /* rotations -> mx my mz */
+} rtb_axis;
+
+typedef struct rtb_bushing6_params {
+  int active[RTB_AXES];        /* 1 = on, 0 = off (zero force; axis[] ignored) */
+  rtb_params axis[RTB_AXES];   /* one complete parameter set per channel */
+} rtb_bushing6_params;
+
+/* Plain data: copy it to save/restore (host rollback). */
+typedef struct rtb_bushing6_state {
+  rtb_state axis[RTB_AXES];    /* an off axis holds zeros (initialised = 0) */
+} rtb_bushing6_state;
+
+/* Every call below that can fail on one axis writes that axis's index to
+ * *bad_axis (or -1 when the failure is not an axis's); bad_axis may be NULL. */
+
+/* Every axis on, each with rtb_params_default(model). */
+rtb_status rtb_bushing6_params_default(rtb_bushing6_params *p, int model);
+/* active[] must be 0 or 1 (RTB_ERR_MODEL); each active axis must validate. */
+rtb_status rtb_bushing6_validate(const rtb_bushing6_params *p, int *bad_axis);
+/* Relaxed state at displacements x0[6] (NULL: all zero). */
+rtb_status rtb_bushing6_init(rtb_bushing6_state *s, const rtb_bushing6_params *p,
+                             const rtb_real x0[RTB_AXES], int *bad_axis);
+/* Trial step of every axis to x[6] over dt: forces into force[6] and the
+ * diagonal of the 6x6 tangent dF/dx into dforce_dx[6] (may be NULL). `s` is
+ * never touched; `trial` (may not alias `s`) is complete only on success.
+ * The status is the first error, else RTB_NOT_CONVERGED if any axis warned. */
+rtb_status rtb_bushing6_evaluate(const rtb_bushing6_state *s, const rtb_bushing6_params *p,
+                                 const rtb_settings *set, const rtb_real x[RTB_AXES],
+                                 rtb_real dt, rtb_bushing6_state *trial,
+                                 rtb_real force[RTB_AXES], rtb_real dforce_dx[RTB_AXES],
+                                 int *bad_axis);
+rtb_status rtb_bushing6_commit(rtb_bushing6_state *s, const rtb_bushing6_state *trial);
+/* evaluate + commit: on error (< 0) neither *s nor force[] is written. */
+rtb_status rtb_bushing6_step(rtb_bushing6_state *s, const rtb_bushing6_params *p,
+                             const rtb_settings *set, const rtb_real x[RTB_AXES], rtb_real dt,
+                             rtb_real force[RTB_AXES], int *bad_axis);
+/* "x", "y", "z", "rx", "ry", "rz" (NULL outside 0..5). */
+const char *rtb_axis_name(int axis);
+
 #ifdef __cplusplus
 }
 #endif

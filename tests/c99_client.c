@@ -95,6 +95,20 @@ int main(void) {
           "rtb_evaluate_ex without info");
     check(rtb_evaluate(&s, &rt, NULL, 0.2, 1e-3, &s, &f, &df) == RTB_ERR_ALIAS, "alias");
   }
+  /* The six-axis element from C99: x and rz on, the rest off. */
+  {
+    rtb_bushing6_params p6;
+    rtb_bushing6_state s6;
+    double x6[RTB_AXES] = {0.1, 0.0, 0.0, 0.0, 0.0, 0.01}, F6[RTB_AXES];
+    int bad = 0, a;
+    check(rtb_bushing6_params_default(&p6, RTB_MODEL_RT) == RTB_OK, "bushing6 default");
+    for (a = RTB_AXIS_Y; a <= RTB_AXIS_RY; ++a) p6.active[a] = 0;
+    check(rtb_bushing6_init(&s6, &p6, NULL, &bad) == RTB_OK && bad == -1, "bushing6 init");
+    check(rtb_bushing6_step(&s6, &p6, NULL, x6, 1e-3, F6, &bad) == RTB_OK, "bushing6 step");
+    check(F6[RTB_AXIS_X] > 0.0 && F6[RTB_AXIS_RZ] > 0.0 && F6[RTB_AXIS_Y] == 0.0,
+          "bushing6 forces");
+    check(strcmp(rtb_axis_name(RTB_AXIS_RZ), "rz") == 0, "rtb_axis_name");
+  }
 
   if (failures) {
     printf("c99_client: %d failure(s)\n", failures);

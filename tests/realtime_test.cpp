@@ -405,4 +405,28 @@ TEST(RealtimeErrors, ErrorPathsDoNotAllocate) {
   EXPECT_NE(msg, nullptr);
 }
 
+// The six-axis calls, success and error paths alike.
+TEST(RealtimeSixAxis, NoHeap) {
+  rtb_bushing6_params p;
+  ASSERT_EQ(rtb_bushing6_params_default(&p, RTB_MODEL_RT), RTB_OK);
+  rtb_params_default(&p.axis[RTB_AXIS_Z], RTB_MODEL_STS);
+  p.active[RTB_AXIS_RZ] = 0;
+  rtb_bushing6_state s, trial;
+  double x[RTB_AXES] = {0}, F[RTB_AXES], K[RTB_AXES];
+  long ok = 0, errors = 0;
+  AllocRegion region;
+  ok += rtb_bushing6_init(&s, &p, nullptr, nullptr) == RTB_OK;
+  for (int i = 1; i <= 200; ++i) {
+    for (int a = 0; a < RTB_AXES; ++a) x[a] = 0.3 * std::sin(0.05 * i * (a + 1));
+    ok += rtb_bushing6_evaluate(&s, &p, nullptr, x, 1e-3, &trial, F, K, nullptr) >= 0;
+    ok += rtb_bushing6_step(&s, &p, nullptr, x, 1e-3, F, nullptr) >= 0;
+    x[RTB_AXIS_Y] = NAN;
+    errors += rtb_bushing6_step(&s, &p, nullptr, x, 1e-3, F, nullptr) < 0;
+  }
+  region.stop();
+  EXPECT_EQ(region.allocs(), 0);
+  EXPECT_EQ(ok, 401);
+  EXPECT_EQ(errors, 200);
+}
+
 }  // namespace

@@ -21,6 +21,8 @@ static const std::vector<Subcommand> kSubcommands = {
      run_identify},
     {"diagnose", "find what the RT model gets wrong, name the cause, extend it, measure the gain",
      run_diagnose},
+    {"header", "C parameter header of a parameter JSON, one axis or six (--axis x=fx.json ...)",
+     run_header},
     {"simulate", "predict the force for a displacement record (CSV in, CSV out)", run_simulate},
     {"validate", "relative error sqrt(J/J0) of a parameter set against measured records",
      run_validate},

@@ -185,7 +185,7 @@ rtb_params params_from_json(const nlohmann::json &doc, const std::string &origin
   return p;
 }
 
-rtb_params params_from_json_text(const std::string &text, const std::string &origin) {
+nlohmann::json parse_json_text(const std::string &text, const std::string &origin) {
   nlohmann::json doc;
   try {
     doc = nlohmann::json::parse(text);
@@ -213,7 +213,11 @@ rtb_params params_from_json_text(const std::string &text, const std::string &ori
     if (tag != std::string::npos) what = what.substr(tag + 2);
     throw InputError(origin + ":" + std::to_string(line) + ": invalid JSON: " + what);
   }
-  return params_from_json(doc, origin);
+  return doc;
+}
+
+rtb_params params_from_json_text(const std::string &text, const std::string &origin) {
+  return params_from_json(parse_json_text(text, origin), origin);
 }
 
 rtb_params read_params_json(const std::string &path) {
