@@ -21,6 +21,8 @@ static const std::vector<Subcommand> kSubcommands = {
      run_identify},
     {"diagnose", "find what the RT model gets wrong, name the cause, extend it, measure the gain",
      run_diagnose},
+    {"dynstiff", "dynamic stiffness and loss angle vs frequency and amplitude (model or sine records)",
+     run_dynstiff},
     {"simulate", "predict the force for a displacement record (CSV in, CSV out)", run_simulate},
     {"validate", "relative error sqrt(J/J0) of a parameter set against measured records",
      run_validate},
