@@ -2,14 +2,22 @@
 // dynamic stiffness of the element against closed forms and an independent
 // reference, the table fit (exact gradient, held-out prediction), table I/O.
 #include <gtest/gtest.h>
+#include <sys/wait.h>
 
 #include <cmath>
 #include <complex>
 #include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
 #include <string>
 #include <vector>
 
+#include "cli_path.h"
 #include "freq_reference.h"
+#include "temp_dir.h"
 #include "physics_helpers.h"
 #include "offline/freq/dynstiff_table.h"
 #include "offline/freq/harmonic.h"
@@ -113,7 +121,7 @@ TEST(FreqClosedForm, SmallAmplitudeLimitIsK0PlusKpa) {
   for (double A : {1e-2, 1e-3}) {
     const DynStiffPoint d = dynamic_stiffness(p, SineTest{10.0, A}, o);
     const double dev = rel(d.k.stiffness, 1800.0);
-    std::printf("[freq] small amplitude A=%g: |K*| %.4f (K0+Kpa 1800), loss %.5f deg\n", A,
+    std::printf("[freq] small amplitude A=%g: |K*| %.9f (K0+Kpa 1800), loss %.6f deg\n", A,
                 d.k.stiffness, d.k.loss_angle_deg);
     EXPECT_LT(dev, prev);
     prev = dev;
@@ -304,3 +312,65 @@ TEST(FreqTable, ParsesAndRejectsWithFileAndLine) {
 }
 
 }  // namespace
+
+// ---------------------------------------------------------------- CLI
+
+namespace cli_freq {
+
+int run(const std::string &args, std::string *err = nullptr) {
+  const std::string errfile = std::string(::testing::TempDir()) + "/rtb_freq_stderr.txt";
+  const int st = std::system((rtb_test::kRtb + " " + args + " >/dev/null 2>" + errfile).c_str());
+  if (err) {
+    std::ifstream f(errfile);
+    std::stringstream ss;
+    ss << f.rdbuf();
+    *err = ss.str();
+  }
+  return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+}
+
+void write(const std::string &path, const std::string &text) { std::ofstream(path) << text; }
+
+}  // namespace cli_freq
+
+TEST(FreqCli, DynstiffTableAndIdentifyFromIt) {
+  if (!std::filesystem::exists(rtb_test::kRtb)) GTEST_SKIP() << "rtb not built: " << rtb_test::kRtb;
+  rtb_test::TempDir dir("rtb_freq");
+  const std::string P = dir.file("p.json"), T = dir.file("t.csv");
+  cli_freq::write(P, "{\"model\":\"rt\",\"cells\":3,\"params\":{\"K0\":1000,\"Kpa\":800,\"Kr\":3000,"
+                     "\"C0\":40,\"alpha\":0.3}}");
+  ASSERT_EQ(cli_freq::run("dynstiff --params " + P + " --freq 2,20 --amp 0.05,1 --out " + T), 0);
+  const DynStiffTable t = read_dynstiff_table(T);
+  ASSERT_EQ(t.rows.size(), 4u);
+  // The CLI's figures are the library's.
+  const DynStiffPoint d = dynamic_stiffness(rt_params(3, 1000, 800, 3000, 40, 0.3),
+                                            SineTest{20, 0.05}, DynStiffOptions());
+  EXPECT_NEAR(t.rows[2].stiffness, d.k.stiffness, 1e-6 * d.k.stiffness);
+  EXPECT_NEAR(t.rows[2].loss_angle_deg, d.k.loss_angle_deg, 1e-6);
+  // Identify from it: JSON with the table section and the uncertainty, and a header.
+  const std::string J = dir.file("fit.json"), H = dir.file("fit.h");
+  ASSERT_EQ(cli_freq::run("identify --dynstiff " + T + " --cells 3 --quiet --out " + J +
+                          " --header " + H),
+            0);
+  std::ifstream jf(J);
+  const nlohmann::json j = nlohmann::json::parse(jf);
+  EXPECT_NEAR(j["params"]["Kpa"].get<double>(), 800.0, 8.0);
+  EXPECT_EQ(j["dynstiff_table"]["rows"].size(), 4u);
+  EXPECT_TRUE(j["uncertainty"].contains("stddev"));
+  EXPECT_TRUE(std::filesystem::exists(H));
+}
+
+TEST(FreqCli, BadInputExits2AndWritesNothing) {
+  if (!std::filesystem::exists(rtb_test::kRtb)) GTEST_SKIP() << "rtb not built: " << rtb_test::kRtb;
+  rtb_test::TempDir dir("rtb_freq");
+  const std::string P = dir.file("p.json"), T = dir.file("t.csv"), out = dir.file("out.csv");
+  cli_freq::write(P, "{\"model\":\"rt\",\"cells\":3,\"params\":{\"K0\":1000,\"Kpa\":800,\"Kr\":3000,"
+                     "\"C0\":40,\"alpha\":0.3}}");
+  std::string err;
+  EXPECT_EQ(cli_freq::run("dynstiff --params " + P + " --freq 2,x --amp 1 --out " + out, &err), 2);
+  EXPECT_NE(err.find("--freq"), std::string::npos);
+  cli_freq::write(T, "frequency,amplitude,stiffness,loss_angle_deg\n1,0.5,1200,5\n2,0.5,-3,5\n");
+  EXPECT_EQ(cli_freq::run("identify --dynstiff " + T + " --out " + out, &err), 2);
+  EXPECT_NE(err.find(T + ":3: stiffness must be > 0"), std::string::npos) << err;
+  EXPECT_FALSE(std::filesystem::exists(out));
+}

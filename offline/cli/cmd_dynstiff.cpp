@@ -94,7 +94,7 @@ int model_grid(const Args &a) {
       "stiffness = |F1/X1|, loss_angle_deg = arg(F1/X1)",
       b};
   write_file_atomic(a.get("out"), format_dynstiff_table(comments, rows));
-  if (a.has("plot")) render_dynstiff_png(a.get("plot"), {DynStiffCurves{"", rows}}, "", "");
+  if (a.has("plot")) render_dynstiff_png(a.get("plot"), {DynStiffCurves{"", rows}}, "", "", "");
   if (bad) std::fprintf(stderr, "rtb dynstiff: warning: %d point(s) not converged (see table)\n", bad);
   return kExitOk;
 }
@@ -141,7 +141,8 @@ int from_records(const Args &a) {
     std::vector<DynStiffCurves> sets = {DynStiffCurves{"measured", meas, "points pt 7 ps 1.2"}};
     if (model) sets.push_back(DynStiffCurves{"model", mod, "lines"});
     render_dynstiff_png(a.get("plot"), sets, unit_of(recs[0].units, "displacement"),
-                        unit_of(recs[0].units, "force"));
+                        unit_of(recs[0].units, "force"),
+                        unit_of(recs[0].units, "time") == "s" ? "Hz" : "");
   }
   return kExitOk;
 }

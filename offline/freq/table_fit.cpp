@@ -262,7 +262,12 @@ TableFitResult fit_dynstiff_table(const DynStiffTable &t, const rtb_params &star
   // J0 = m/2 makes sqrt(J/J0) the rms residual: the rms relative error of K*.
   R.J0 = 0.5 * (double)nres;
   int fwd = 0, adj = 0;
-  out.disc = choose_discretizations(start, t, o.conv);
+  // First pass capped at 32 cycles: a start far from the data (a friction-
+  // like alpha) can creep for hundreds of periods that the optimum does not
+  // need; the re-check at the optimum uses the full limits.
+  DynStiffOptions first = o.conv;
+  first.max_cycles = std::min(first.max_cycles, 32);
+  out.disc = choose_discretizations(start, t, first);
   R.error_start = std::sqrt(table_misfit(start, t, out.disc, nullptr, o.conv.newton_tol) / R.J0);
   Eigen::VectorXd th = tf.to_theta(start);
   rtb_params p = start;
@@ -288,7 +293,7 @@ TableFitResult fit_dynstiff_table(const DynStiffTable &t, const rtb_params &star
       out.disc_check_deg = std::max(out.disc_check_deg, dd);
       worst = std::max({worst, dr / o.conv.tol.stiffness_rel, dd / o.conv.tol.loss_deg});
     }
-    if (worst <= 1.0 || round >= 1) break;
+    if (worst <= 1.0 || round >= 2) break;
     out.disc = d2;
     ++out.refits;
   }

@@ -31,15 +31,17 @@ std::string unit(const std::string &u) { return u.empty() ? "" : " [" + u + "]";
 }  // namespace
 
 void render_dynstiff_png(const std::string &png_path, const std::vector<DynStiffCurves> &sets,
-                         const std::string &length_unit, const std::string &force_unit) {
+                         const std::string &length_unit, const std::string &force_unit,
+                         const std::string &freq_unit) {
   Figure k, d;
   k.title = "dynamic stiffness";
   d.title = "loss angle";
-  k.xlabel = d.xlabel = "frequency";
+  k.xlabel = d.xlabel = "frequency" + unit(freq_unit);
   k.ylabel = "|K*|" + unit(force_unit.empty() || length_unit.empty() ? "" : force_unit + "/" + length_unit);
   d.ylabel = "loss angle [deg]";
   k.logx = d.logx = true;
-  k.key = d.key = "outside right top vertical";
+  k.key = "outside right top vertical";  // one legend serves both panels
+  d.key = "off";
   for (const DynStiffCurves &s : sets) {
     const std::vector<std::vector<DynStiffRow>> groups = by_amplitude(s.rows);
     for (size_t gi = 0; gi < groups.size(); ++gi) {
@@ -61,7 +63,7 @@ void render_dynstiff_png(const std::string &png_path, const std::vector<DynStiff
       d.series.push_back(sd);
     }
   }
-  render_png(png_path, {k, d}, 1500, 650);
+  render_png(png_path, {k, d}, 1500, 600);
 }
 
 }  // namespace rtb

@@ -19,7 +19,8 @@ struct DynStiffCurves {
 
 // Units are for the axis labels ("" = none given).
 void render_dynstiff_png(const std::string &png_path, const std::vector<DynStiffCurves> &sets,
-                         const std::string &length_unit, const std::string &force_unit);
+                         const std::string &length_unit, const std::string &force_unit,
+                         const std::string &freq_unit);
 
 }  // namespace rtb
 
