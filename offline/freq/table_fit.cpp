@@ -224,9 +224,7 @@ OptResult minimize_table(const DynStiffTable &t, const std::vector<Discretizatio
     ++fwd;
     if (grad) {
       ++adj;
-      const Eigen::VectorXd d = tf.dp_dtheta(th);
-      grad->resize(th.size());
-      for (Eigen::Index i = 0; i < th.size(); ++i) (*grad)[i] = g[tf.free[i]] * d[i];
+      *grad = tf.theta_gradient(g, th);
     }
     return J;
   };
@@ -262,9 +260,9 @@ TableFitResult fit_dynstiff_table(const DynStiffTable &t, const rtb_params &star
   // J0 = m/2 makes sqrt(J/J0) the rms residual: the rms relative error of K*.
   R.J0 = 0.5 * (double)nres;
   int fwd = 0, adj = 0;
-  // First pass capped at 32 cycles: a start far from the data (a friction-
-  // like alpha) can creep for hundreds of periods that the optimum does not
-  // need; the re-check at the optimum uses the full limits.
+  // First pass capped at 32 cycles: a start far from the data may have slow
+  // transients that the optimum does not; the re-check at the optimum uses
+  // the full limits.
   DynStiffOptions first = o.conv;
   first.max_cycles = std::min(first.max_cycles, 32);
   out.disc = choose_discretizations(start, t, first);

@@ -45,9 +45,7 @@ IdentifyResult identify(const std::vector<Record> &recs, const rtb_params &start
     ++fwd;
     if (grad) {
       ++adj;
-      const Eigen::VectorXd d = tf.dp_dtheta(th);
-      grad->resize(th.size());
-      for (Eigen::Index i = 0; i < th.size(); ++i) (*grad)[i] = m.grad[tf.free[i]] * d[i] / J0;
+      *grad = tf.theta_gradient(m.grad, th) / J0;
     }
     return m.J / J0;
   };

@@ -139,6 +139,13 @@ Eigen::VectorXd ParamTransform::dp_dtheta(const Eigen::VectorXd &th) const {
   return d;
 }
 
+Eigen::VectorXd ParamTransform::theta_gradient(const std::array<double, P_COUNT> &dJ_dp,
+                                               const Eigen::VectorXd &theta) const {
+  Eigen::VectorXd g = dp_dtheta(theta);
+  for (size_t i = 0; i < free.size(); ++i) g[(Eigen::Index)i] *= dJ_dp[free[i]];
+  return g;
+}
+
 Eigen::VectorXd ParamTransform::lower() const {
   Eigen::VectorXd lo = Eigen::VectorXd::Constant((Eigen::Index)free.size(), -INFINITY);
   for (size_t i = 0; i < free.size(); ++i)

@@ -45,6 +45,9 @@ struct ParamTransform {
   rtb_params to_params(const Eigen::VectorXd &theta, const rtb_params &base) const;
   // dp_i / dtheta_i at theta (diagonal of the Jacobian).
   Eigen::VectorXd dp_dtheta(const Eigen::VectorXd &theta) const;
+  // Chain rule: dJ/dtheta from dJ/dp (every ParamId) at theta.
+  Eigen::VectorXd theta_gradient(const std::array<double, P_COUNT> &dJ_dp,
+                                 const Eigen::VectorXd &theta) const;
   // The box on theta (-inf/+inf where unbounded), for OptOptions.
   Eigen::VectorXd lower() const;
   Eigen::VectorXd upper() const;

@@ -129,7 +129,10 @@ void write_sine_tests_page(const std::string &data_dir, const std::string &out_d
      << "A pure friction loop (a force +-Fs switching with the velocity) has F1 = (4/pi) Fs "
         "in phase with the velocity: |K*| = 4 Fs / (pi A), falling as 1/A, and a loss angle of "
         "90 deg; elastic parts and the clearance after each reversal lower the angle. The "
-        "clearance of the device (the study's diagnosis) is not in these plain RT models.\n\n";
+        "clearance of the device (the study's diagnosis) is not in these plain RT models. Both "
+        "models come from 36 lb data: on the 30 lb sets they show how the band tension scales "
+        "the stiffness (measured 0.6-0.7 x the 36 lb figures at 0.5 in) at a similar loss "
+        "angle.\n\n";
   md << "| parameter | time fit | table fit | table fit std. dev. |\n|---|---|---|---|\n";
   for (size_t i = 0; i < to.free.size(); ++i) {
     const ParamId id = to.free[i];
