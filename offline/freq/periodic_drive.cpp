@@ -72,7 +72,7 @@ DynStiffPoint periodic_at(const rtb_params &p, const SineTest &s, int M, const D
     const double tail = ratio < 1.0 ? d1 * ratio / (1.0 - ratio) : INFINITY;
     // A loop that is periodic to rounding alternates by ~1e-15 from period to
     // period (ratio ~1): below 1e-6 tolerance units a change is not a transient.
-    const double worst = d1 <= 1e-6 ? d1 : std::max(d1, tail);
+    const double worst = d1 <= 1e-6 ? d1 : d1 + tail;  // last change plus what remains
     r.period_change_rel = std::fabs(k[C - 1].stiffness - k[C - 2].stiffness) / k[C - 1].stiffness;
     r.period_change_deg = std::fabs(k[C - 1].loss_angle_deg - k[C - 2].loss_angle_deg);
     if (std::isfinite(tail)) {  // report the extrapolated remaining change

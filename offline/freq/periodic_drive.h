@@ -8,7 +8,7 @@
 // angle; every check asks for a tenth of that):
 //  * periodicity, at fixed M: the harmonic of every period of one run is
 //    taken; the run is long enough when the last period-to-period change d_C
-//    and its geometric tail d_C r/(1 - r), r = d_C / d_{C-1}, are both below a
+//    plus its geometric tail d_C r/(1 - r), r = d_C / d_{C-1}, is below a
 //    tenth of the tolerance (a change below 1e-6 of the tolerance is rounding
 //    and passes). Otherwise C doubles (4 .. max_cycles).
 //  * steps per cycle: M doubles from min_steps until the results at M and 2M
