@@ -248,57 +248,33 @@ double table_stiffness_cap(const DynStiffTable &t) {
 
 }  // namespace
 
-TableFitResult fit_dynstiff_table(const DynStiffTable &t, const rtb_params &start,
-                                  const TableFitOptions &o) {
-  const auto t0 = std::chrono::steady_clock::now();
-  TableFitResult out;
-  IdentifyResult &R = out.fit;
-  R.start = start;
-  R.method = o.method;
-  const ParamTransform tf(o.free, start, table_stiffness_cap(t));
-  const size_t nres = 2 * active_rows(t).size();
-  // J0 = m/2 makes sqrt(J/J0) the rms residual: the rms relative error of K*.
-  R.J0 = 0.5 * (double)nres;
-  int fwd = 0, adj = 0;
-  // First pass capped at 32 cycles: a start far from the data may have slow
-  // transients that the optimum does not; the re-check at the optimum uses
-  // the full limits.
-  DynStiffOptions first = o.conv;
-  first.max_cycles = std::min(first.max_cycles, 32);
-  out.disc = choose_discretizations(start, t, first);
-  R.error_start = std::sqrt(table_misfit(start, t, out.disc, nullptr, o.conv.newton_tol) / R.J0);
-  Eigen::VectorXd th = tf.to_theta(start);
-  rtb_params p = start;
-  // Fit at fixed discretizations, then re-converge them at the optimum; refit
-  // (warm) if the fixed ones were off by more than the tolerance there.
-  for (int round = 0;; ++round) {
-    const OptResult r = minimize_table(t, out.disc, tf, start, o, th, fwd, adj);
-    th = r.theta;
-    p = tf.to_params(th, start);
-    R.iterations += r.iterations;
-    R.converged = r.converged;
-    R.message = r.message;
-    const std::vector<Discretization> d2 = choose_discretizations(p, t, o.conv);
-    double worst = 0.0;
-    out.disc_check_rel = out.disc_check_deg = 0.0;
-    for (size_t k = 0; k < t.rows.size(); ++k) {
-      const SineTest s{t.rows[k].freq, t.rows[k].amp};
-      const ComplexStiffness a = dynamic_stiffness_fixed(p, s, out.disc[k], o.conv.newton_tol);
-      const ComplexStiffness b = dynamic_stiffness_fixed(p, s, d2[k], o.conv.newton_tol);
-      const double dr = std::fabs(a.stiffness - b.stiffness) / b.stiffness;
-      const double dd = std::fabs(a.loss_angle_deg - b.loss_angle_deg);
-      out.disc_check_rel = std::max(out.disc_check_rel, dr);
-      out.disc_check_deg = std::max(out.disc_check_deg, dd);
-      worst = std::max({worst, dr / o.conv.tol.stiffness_rel, dd / o.conv.tol.loss_deg});
-    }
-    if (worst <= 1.0 || round >= 2) break;
-    out.disc = d2;
-    ++out.refits;
+namespace {
+
+// Re-converge the discretizations at p and compare K* there with the fixed
+// ones: the largest change, in units of the tolerance.
+double recheck_discretizations(const rtb_params &p, const DynStiffTable &t, const TableFitOptions &o,
+                               const std::vector<Discretization> &fixed,
+                               std::vector<Discretization> &fresh, TableFitResult &out) {
+  fresh = choose_discretizations(p, t, o.conv);
+  double worst = 0.0;
+  out.disc_check_rel = out.disc_check_deg = 0.0;
+  for (size_t k = 0; k < t.rows.size(); ++k) {
+    const SineTest s{t.rows[k].freq, t.rows[k].amp};
+    const ComplexStiffness a = dynamic_stiffness_fixed(p, s, fixed[k], o.conv.newton_tol);
+    const ComplexStiffness b = dynamic_stiffness_fixed(p, s, fresh[k], o.conv.newton_tol);
+    const double dr = std::fabs(a.stiffness - b.stiffness) / b.stiffness;
+    const double dd = std::fabs(a.loss_angle_deg - b.loss_angle_deg);
+    out.disc_check_rel = std::max(out.disc_check_rel, dr);
+    out.disc_check_deg = std::max(out.disc_check_deg, dd);
+    worst = std::max({worst, dr / o.conv.tol.stiffness_rel, dd / o.conv.tol.loss_deg});
   }
-  R.params = p;
-  R.J = table_misfit(p, t, out.disc, nullptr, o.conv.newton_tol);
-  R.error = std::sqrt(R.J / R.J0);
-  // Model vs table, per row.
+  return worst;
+}
+
+// Model against table, row by row: out.model, the rms and max errors, and
+// the per-row relative error of K* as error_per_record.
+void compare_with_table(const rtb_params &p, const DynStiffTable &t, const TableFitOptions &o,
+                        TableFitResult &out) {
   double s2K = 0, s2d = 0;
   for (size_t k = 0; k < t.rows.size(); ++k) {
     const DynStiffRow &row = t.rows[k];
@@ -310,17 +286,20 @@ TableFitResult fit_dynstiff_table(const DynStiffTable &t, const rtb_params &star
     s2d += ed * ed;
     out.max_stiffness_rel = std::max(out.max_stiffness_rel, std::fabs(eK));
     out.max_loss_deg = std::max(out.max_loss_deg, std::fabs(ed));
-    R.error_per_record.push_back(std::sqrt(eK * eK + std::pow(ed * kDeg, 2)));
+    out.fit.error_per_record.push_back(std::sqrt(eK * eK + std::pow(ed * kDeg, 2)));
   }
   out.rms_stiffness_rel = std::sqrt(s2K / (double)t.rows.size());
   out.rms_loss_deg = std::sqrt(s2d / (double)t.rows.size());
-  // Uncertainty: Gauss-Newton (Fisher) sandwich, the stiffness and the
-  // loss-angle residuals as two groups with their own noise levels (a data
-  // sheet rounds them differently).
+}
+
+// Gauss-Newton (Fisher) sandwich covariance, the stiffness and the loss-angle
+// residuals as two groups with their own noise levels (a data sheet rounds
+// them differently).
+Uncertainty table_uncertainty(const rtb_params &p, const DynStiffTable &t,
+                              const std::vector<Discretization> &disc, const TableFitOptions &o) {
   Eigen::VectorXd r;
   Eigen::MatrixXd Jp;
-  table_residuals(p, t, out.disc, o.free, r, &Jp, o.conv.newton_tol);
-  adj += 2 * (int)t.rows.size();
+  table_residuals(p, t, disc, o.free, r, &Jp, o.conv.newton_tol);
   std::vector<int> group((size_t)r.size());
   Eigen::VectorXd w(r.size());
   const std::vector<size_t> rows = active_rows(t);
@@ -328,11 +307,55 @@ TableFitResult fit_dynstiff_table(const DynStiffTable &t, const rtb_params &star
     group[(size_t)j] = (int)(j % 2);
     w[j] = t.rows[rows[(size_t)j / 2]].weight;
   }
-  Uncertainty &U = R.uncertainty;
+  Uncertainty U;
   U.ids = o.free;
   U.valid = sandwich_covariance(r, Jp, w, group, U.stddev, &U.correlation, &U.noise_sigma);
+  return U;
+}
+
+}  // namespace
+
+TableFitResult fit_dynstiff_table(const DynStiffTable &t, const rtb_params &start,
+                                  const TableFitOptions &o) {
+  const auto t0 = std::chrono::steady_clock::now();
+  TableFitResult out;
+  IdentifyResult &R = out.fit;
+  R.start = start;
+  R.method = o.method;
+  const ParamTransform tf(o.free, start, table_stiffness_cap(t));
+  // J0 = m/2 makes sqrt(J/J0) the rms residual: the rms relative error of K*.
+  R.J0 = (double)active_rows(t).size();
+  int fwd = 0, adj = 0;
+  // First pass capped at 32 cycles: a start far from the data may have slow
+  // transients that the optimum does not; the re-check at the optimum uses
+  // the full limits.
+  DynStiffOptions first = o.conv;
+  first.max_cycles = std::min(first.max_cycles, 32);
+  out.disc = choose_discretizations(start, t, first);
+  R.error_start = std::sqrt(table_misfit(start, t, out.disc, nullptr, o.conv.newton_tol) / R.J0);
+  Eigen::VectorXd th = tf.to_theta(start);
+  // Fit at fixed discretizations, then re-converge them at the optimum; refit
+  // (warm) if the fixed ones were off by more than the tolerance there.
+  for (int round = 0;; ++round) {
+    const OptResult r = minimize_table(t, out.disc, tf, start, o, th, fwd, adj);
+    th = r.theta;
+    R.iterations += r.iterations;
+    R.converged = r.converged;
+    R.message = r.message;
+    std::vector<Discretization> fresh;
+    if (recheck_discretizations(tf.to_params(th, start), t, o, out.disc, fresh, out) <= 1.0 ||
+        round >= 2)
+      break;
+    out.disc = fresh;
+    ++out.refits;
+  }
+  R.params = tf.to_params(th, start);
+  R.J = table_misfit(R.params, t, out.disc, nullptr, o.conv.newton_tol);
+  R.error = std::sqrt(R.J / R.J0);
+  compare_with_table(R.params, t, o, out);
+  R.uncertainty = table_uncertainty(R.params, t, out.disc, o);
   R.forward_solves = fwd + 2;
-  R.adjoint_solves = adj;
+  R.adjoint_solves = adj + 2 * (int)t.rows.size();
   R.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return out;
 }
