@@ -312,6 +312,8 @@ TEST(FreqTable, ParsesAndRejectsWithFileAndLine) {
             std::string::npos);
   EXPECT_NE(msg("frequency,amplitude,stiffness,loss_angle_deg\n").find("no data rows"),
             std::string::npos);
+  EXPECT_NE(msg("frequency,amplitude,stiffness,loss_angle_deg,weight\n1,2,3,4,0\n").find("weight 0"),
+            std::string::npos);
   // Round trip through the writer.
   const DynStiffTable u = parse_dynstiff_table(format_dynstiff_table({"c"}, t.rows), "u.csv");
   EXPECT_EQ(u.rows[0].stiffness, 1230.0);

@@ -93,6 +93,9 @@ DynStiffTable parse_dynstiff_table(const std::string &bytes, const std::string &
   }
   if (!have_header) throw InputError(path + ":" + std::to_string(lineno) + ": no header line");
   if (t.rows.empty()) throw InputError(path + ":" + std::to_string(lineno) + ": no data rows");
+  bool any = false;
+  for (const DynStiffRow &r : t.rows) any = any || r.weight > 0.0;
+  if (!any) throw InputError(path + ":" + std::to_string(lineno) + ": every row has weight 0");
   return t;
 }
 

@@ -28,7 +28,7 @@ struct DynStiffTable {
 // Throws InputError "PATH:LINE: ..." on a missing file or column, a
 // non-numeric or non-finite cell, a wrong field count, frequency, amplitude
 // or stiffness <= 0, a loss angle outside (-90, 90) deg, a negative weight,
-// or no rows.
+// no rows, or no row of positive weight.
 DynStiffTable read_dynstiff_table(const std::string &path);
 DynStiffTable parse_dynstiff_table(const std::string &bytes, const std::string &path);
 
