@@ -23,6 +23,8 @@ static const std::vector<Subcommand> kSubcommands = {
      run_diagnose},
     {"header", "C parameter header of a parameter JSON, one axis or six (--axis x=fx.json ...)",
      run_header},
+    {"dynstiff", "dynamic stiffness and loss angle vs frequency and amplitude (model or sine records)",
+     run_dynstiff},
     {"simulate", "predict the force for a displacement record (CSV in, CSV out)", run_simulate},
     {"validate", "relative error sqrt(J/J0) of a parameter set against measured records",
      run_validate},

@@ -45,9 +45,7 @@ IdentifyResult identify(const std::vector<Record> &recs, const rtb_params &start
     ++fwd;
     if (grad) {
       ++adj;
-      Eigen::VectorXd g(th.size());
-      for (Eigen::Index i = 0; i < th.size(); ++i) g[i] = m.grad[tf.free[(size_t)i]];
-      *grad = tf.jacobian(th, start).transpose() * g / J0;
+      *grad = tf.theta_gradient(m.grad, th, start) / J0;
     }
     return m.J / J0;
   };

@@ -163,6 +163,14 @@ Eigen::MatrixXd ParamTransform::jacobian(const Eigen::VectorXd &th, const rtb_pa
   return J;
 }
 
+Eigen::VectorXd ParamTransform::theta_gradient(const std::array<double, P_COUNT> &dJ_dp,
+                                               const Eigen::VectorXd &theta,
+                                               const rtb_params &base) const {
+  Eigen::VectorXd g(theta.size());
+  for (size_t i = 0; i < free.size(); ++i) g[(Eigen::Index)i] = dJ_dp[free[i]];
+  return jacobian(theta, base).transpose() * g;
+}
+
 Eigen::VectorXd ParamTransform::lower() const {
   Eigen::VectorXd lo = Eigen::VectorXd::Constant((Eigen::Index)free.size(), -INFINITY);
   for (size_t i = 0; i < free.size(); ++i)

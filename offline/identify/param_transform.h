@@ -51,6 +51,10 @@ struct ParamTransform {
   // k_asym follows K0 (d k_asym / d theta_K0 = +-dK0/dtheta_K0) and not its
   // own coordinate (0), so gradients through the clamp are exact.
   Eigen::MatrixXd jacobian(const Eigen::VectorXd &theta, const rtb_params &base) const;
+  // Chain rule: dJ/dtheta from dJ/dp (every ParamId) at theta, through the
+  // whole Jacobian above (exact at the k_asym clamp).
+  Eigen::VectorXd theta_gradient(const std::array<double, P_COUNT> &dJ_dp,
+                                 const Eigen::VectorXd &theta, const rtb_params &base) const;
   // The box on theta (-inf/+inf where unbounded), for OptOptions.
   Eigen::VectorXd lower() const;
   Eigen::VectorXd upper() const;
