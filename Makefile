@@ -4,6 +4,8 @@
 #   make demo     build, then run `build/rtb demo`
 #   make bench    build, then run the Google Benchmark suite (JSON in build/bench.json)
 #   make report   build, then run `build/rtb report`
+#   make acceptance  build, then `rtb diagnose` on records of the independent
+#                 generator tests/refgen (table in build/acceptance/table.txt)
 #   make clean    remove the build trees
 # Every target except clean first checks the Debian packages it needs (deps).
 
@@ -25,7 +27,7 @@ DEB_PACKAGES := cmake g++ make libgtest-dev libbenchmark-dev libeigen3-dev \
                 nlohmann-json3-dev gnuplot-nox
 
 .PHONY: all deps configure build test test-release check-symbols test-asan \
-        demo bench report clean
+        demo bench report acceptance clean
 
 all: build
 
@@ -95,6 +97,13 @@ report: build
 	  echo "  It holds the friction-damper and VHB 4910 records (see docs/results/ for what they give)."; \
 	  echo "  Put it there or run: make report DATA_DIR=/path/to/data"; exit 1; fi
 	./$(BUILD)/rtb report --data-dir "$(DATA_DIR)" --out-dir docs/results
+
+# `rtb diagnose` scored on records from the independent reference generator
+# (tests/refgen/acceptance.sh; issue #10). 10-60 s per case: the quick set
+# takes 10-20 min; ACCEPT_ARGS="--set all" runs every word on two seeds.
+ACCEPT_ARGS ?= --set quick
+acceptance: build
+	bash tests/refgen/acceptance.sh --build $(BUILD) $(ACCEPT_ARGS)
 
 bench: build
 	@if [ ! -x $(BUILD)/bench/rtb_bench ]; then echo "$(BUILD)/bench/rtb_bench was not built (no bench/*_bench.cpp?)"; exit 1; fi
