@@ -66,6 +66,20 @@ TEST(IndependentDiagnose, FloatingClearanceIsBacklash) {
   EXPECT_EQ(d.R.cause, "backlash") << d.R.verdict;
 }
 
+// A clearance whose bushing end is held in the gap (deformation frozen,
+// force relaxing) is a backlash too (issue #10, item 4). Fails now: `none`.
+TEST(IndependentDiagnose, DISABLED_HeldClearanceIsBacklash) {
+  const Diagnosed d = diagnose_refgen("backlash_held", 1);
+  EXPECT_EQ(d.R.cause, "backlash") << d.R.verdict;
+}
+
+// A strip that cannot push goes slack near the end of unloading (issue #10,
+// item 6; a word the current vocabulary does not have).
+TEST(IndependentDiagnose, DISABLED_SlackStripIsSlack) {
+  const Diagnosed d = diagnose_refgen("slack", 1);
+  EXPECT_EQ(d.R.cause, "slack") << d.R.verdict;
+}
+
 // 50 Hz mains hum on the force channel is outside the vocabulary: any
 // physical name is wrong; "none" or "unexplained" are not.
 TEST(IndependentDiagnose, MainsHumGetsNoPhysicalName) {

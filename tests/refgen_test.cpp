@@ -6,8 +6,11 @@
 // CSV reader reads every column convention it writes. Cheap: a few seconds.
 #include <gtest/gtest.h>
 
+#include <sys/wait.h>
+
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <string>
 
 #include "refgen.h"
@@ -228,6 +231,22 @@ TEST(RefgenScenario, SeedFixesTheSpecimenAndEffectsOnlyAddTheirOwn) {
   EXPECT_THROW(make_scenario({"slack", "maxwell"}, 1), std::invalid_argument);
   EXPECT_EQ(expected_word("backlash_held"), "backlash");
   EXPECT_EQ(expected_word("hum"), "unexplained");
+}
+
+TEST(RefgenCli, BadInputIsAClearErrorAndWritesNothing) {
+  const std::string dir = (std::filesystem::temp_directory_path() / "refgen_cli_bad").string();
+  std::filesystem::remove_all(dir);
+  const std::string cmd = std::string("'") + RTB_REFGEN_PATH +
+                          "' --effect cubic_stiffness,nonsense --out-dir '" + dir + "' 2>&1";
+  FILE *p = popen(cmd.c_str(), "r");
+  ASSERT_NE(p, nullptr);
+  std::string out;
+  char buf[256];
+  while (std::fgets(buf, sizeof buf, p)) out += buf;
+  const int status = pclose(p);
+  EXPECT_EQ(WEXITSTATUS(status), 2);
+  EXPECT_NE(out.find("unknown effect 'nonsense'"), std::string::npos) << out;
+  EXPECT_FALSE(std::filesystem::exists(dir));
 }
 
 #ifdef RTB_HAVE_OFFLINE

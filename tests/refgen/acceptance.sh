@@ -105,7 +105,7 @@ for c in $cases; do
   wall=$(awk -v a="$t0" -v b="$(date +%s.%N)" 'BEGIN { printf "%.1f", b - a }')
   python3 "$here/score.py" row "$name" "$dir/truth.json" "$dir/report.json" "$wall" "$status" >> "$results"
   [ $keep -eq 1 ] || rm -f "$dir"/*.csv
-  tail -n 1 "$results" | python3 -c 'import json,sys; r=json.loads(sys.stdin.read()); print("  %-34s -> %-20s %s (%.0f s)" % (r["case"], r["cause"], "ok" if r["ok"] else "MISS", r["wall_s"]))'
+  tail -n 1 "$results" | python3 -c 'import json,sys; r=json.loads(sys.stdin.read()); print("  %-30s -> %-20s %s (%.0f s)" % (r["case"], r["cause"], "ok" if r["ok"] else "MISS", r["wall_s"]))'
 done
 python3 "$here/score.py" table "$results" | tee "$out/table.txt"
 echo "load after the run: $(uptime)"

@@ -83,7 +83,7 @@ def row(case, truth_path, report_path, wall, status):
         r.update(cause=cause, names=names, ok=ok, wrong=wrong,
                  base=number(report, "baseline", "error_holdout"),
                  ext=number(report, "extended", "error_holdout"),
-                 noise=number(report, "noise_floor"))
+                 tool_floor=number(report, "noise_floor", "error_holdout"))
     print(json.dumps(r))
 
 
@@ -93,15 +93,16 @@ def pct(v):
 
 def table(path):
     rows = [json.loads(line) for line in open(path) if line.strip()]
-    head = "%-34s %-26s %-30s %-4s %7s %7s %7s %7s" % (
-        "case", "expected", "named (cause; causes)", "ok", "base%", "ext%", "floor%", "wall s")
+    head = "%-30s %-26s %-30s %-4s %7s %7s %7s %7s %7s" % (
+        "case", "expected", "named (cause; causes)", "ok", "base%", "ext%", "floor%", "tool%", "wall s")
     print(head)
     print("-" * len(head))
     for r in rows:
         named = r["cause"] + ("; " + ",".join(r["names"]) if r["names"] and r["names"] != [r["cause"]] else "")
-        print("%-34s %-26s %-30s %-4s %7s %7s %7s %7.1f" % (
+        print("%-30s %-26s %-30s %-4s %7s %7s %7s %7s %7.1f" % (
             r["case"], ",".join(r["expected"]), named, "yes" if r["ok"] else "NO",
-            pct(r.get("base")), pct(r.get("ext")), pct(r.get("noise_floor_holdout")), r["wall_s"]))
+            pct(r.get("base")), pct(r.get("ext")), pct(r.get("noise_floor_holdout")),
+            pct(r.get("tool_floor")), r["wall_s"]))
     def score(cats):
         sel = [r for r in rows if r["category"] in cats]
         return "%d/%d" % (sum(r["ok"] for r in sel), len(sel))
@@ -112,7 +113,8 @@ def table(path):
           " (cases with a named word not expected); total wall %.0f s" % (
               score({"single"}), score({"combined", "new", "oov"}), score({"plain"}), wrong, wall))
     print("base%/ext%: held-out error (eq. 27) of plain RT and of the extended model; "
-          "floor%: refgen's force-noise floor on the held-out records")
+          "floor%: refgen's force-noise floor on the held-out records; tool%: the noise floor "
+          "the diagnosis estimated (when it reports one)")
 
 
 if __name__ == "__main__":
