@@ -57,23 +57,26 @@ std::string sha256_file(const std::string &path);
 // ---------------------------------------------------------------- params
 // Parameter JSON: {"model":"rt"|"sts","cells":15,"integrator":"sdirk2"|"be",
 //   "params":{"K0":..,"Kpa":..,"Kr":..,"C0":..,"alpha":.., optional
-//   extensions "k3","k_asym","maxwell_k","maxwell_tau","viscous_c","mass",
-//   "backlash","mullins","sat_force","sat_disp"; STS: "Ff"}, optional
-//   top-level "smoothing" (eq. (14), 0 = off)}. Throws InputError on a missing,
-// non-numeric, negative or out-of-range value (alpha outside (0,1) named).
+//   extensions: every other field of RTB_PARAM_FIELDS (rt_bushing.h) by its
+//   name, e.g. "k3", "maxwell_tau", "backlash", "slack", "spec_k"; STS: "Ff"},
+//   optional top-level "smoothing" (eq. (14), 0 = off)}. Throws InputError on
+// a missing or non-numeric value, and on a value the library's
+// rtb_params_check rejects, naming the field and its rule.
 rtb_params read_params_json(const std::string &path);
 rtb_params params_from_json_text(const std::string &text, const std::string &origin);
 // The "model/cells/integrator/params" part of a parameter file, as JSON text
 // (used by identify to build its richer output).
 std::string params_to_json_text(const rtb_params &p);
 
-// Identifiable parameters: the five of the paper, then the extensions.
-enum ParamId {
-  P_K0, P_Kpa, P_Kr, P_C0, P_alpha,
-  P_k3, P_k_asym, P_maxwell_k, P_maxwell_tau, P_viscous_c, P_mass, P_backlash, P_mullins,
-  P_sat_force, P_sat_disp,
-  P_COUNT
-};
+// Identifiable parameters: the fields of kind FIT in RTB_PARAM_FIELDS
+// (rt_bushing.h), in struct order: the five of the paper, then the extensions.
+#define RTB_PARAM_ID_FIT(name) P_##name,
+#define RTB_PARAM_ID_SETTING(name)
+#define RTB_PARAM_ID(name, rule, kind, unit, text) RTB_PARAM_ID_##kind(name)
+enum ParamId { RTB_PARAM_FIELDS(RTB_PARAM_ID) P_COUNT };
+#undef RTB_PARAM_ID
+#undef RTB_PARAM_ID_FIT
+#undef RTB_PARAM_ID_SETTING
 const char *param_name(ParamId id);          // "K0", "Kpa", ... as in the JSON
 double &param_ref(rtb_params &p, ParamId id);
 double param_get(const rtb_params &p, ParamId id);

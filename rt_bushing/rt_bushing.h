@@ -28,11 +28,14 @@ extern "C" {
 /* Types                                                               */
 /* ------------------------------------------------------------------ */
 
-#define RTB_ABI_VERSION 2     /* bumped on any layout change of the structs
-                                 (2: `smoothing`, `sat_force`, `sat_disp` took reserved[0..2]) */
+#define RTB_ABI_VERSION 3     /* bumped on any layout change of the structs
+                                 (2: `smoothing`, `sat_force`, `sat_disp` took reserved[0..2];
+                                  3: slack, backlash_held, fric_asym, spec_* and the
+                                  spectrum memory z_spec in rtb_state) */
 #define RTB_MAX_CELLS 32      /* capacity of rtb_state; N = 1 .. RTB_MAX_CELLS */
 #define RTB_DEFAULT_CELLS 15  /* the paper's choice (section 3.4) */
-#define RTB_N_RESERVED 13
+#define RTB_N_RESERVED 6
+#define RTB_MAX_BRANCHES 16  /* capacity of the relaxation spectrum (eight decades) */
 
 typedef double rtb_real;
 #define RTB_SCALAR_BYTES 8    /* sizeof(rtb_real); checked by generated headers */
@@ -122,8 +125,62 @@ typedef struct rtb_params {
    * stiffens (elastomers at large strain, issue #5). Off when sat_force = 0. */
   rtb_real sat_force;   /* >= 0                                   [force] */
   rtb_real sat_disp;    /* > 0 when sat_force > 0                 [length] */
+
+  /* ABI 3 (issue #10), from reserved[0..6]. */
+  rtb_real slack;       /* 1: the specimen cannot push (strip, cable, tension-
+                           only mount): when the force at xb = x would be
+                           negative the end floats free (F = 0, xb > x) while
+                           the cells keep relaxing. 0 = off. Exactly 0 or 1. */
+  rtb_real backlash_held; /* 0: inside the clearance the bushing end floats
+                           free (F = 0); 1: it is held where it is (xb frozen,
+                           the force relaxes). Exactly 0 or 1. */
+  rtb_real fric_asym;   /* a in (-1, 1): dashpot level C0 (1 + a) for positive
+                           cell velocity, C0 (1 - a) for negative (RT only). */
+  rtb_real spec_k;      /* relaxation spectrum (long memory): total stiffness
+                           of M Maxwell branches, >= 0            [force/length] */
+  rtb_real spec_exp;    /* its weight exponent beta: branch j has stiffness
+                           spec_k tau_j^-beta / sum_i tau_i^-beta  [-] */
+  rtb_real spec_tau_min;/* fastest branch time, > 0 when spec_k > 0 [time] */
+  rtb_real spec_tau_max;/* slowest, >= spec_tau_min; branches log-spaced, two
+                           per decade, at most RTB_MAX_BRANCHES    [time] */
   rtb_real reserved[RTB_N_RESERVED];
 } rtb_params;
+
+/*
+ * The real-valued fields of rtb_params, in declaration order, as one list
+ * (an X-macro): X(field, rule, kind, unit, text). Validation, the offline
+ * tool's JSON reader/writer, its header emitter and its parameter names are
+ * all generated from it, so a new field is added here and in the struct only.
+ *   rule: POSITIVE (> 0 where required, else >= 0), NONNEG (>= 0), ANY,
+ *         ALPHA ([RTB_ALPHA_MIN, 1) for RT), FRACTION ([0, 1)),
+ *         FLAG (exactly 0 or 1), SIGNED_FRACTION ((-1, 1)).
+ *   kind: FIT (identifiable), SETTING (fixed model setting, not fitted).
+ */
+#define RTB_PARAM_FIELDS(X)                                                          \
+  X(K0, NONNEG, FIT, "force/length", "global elastic stiffness, eq. (11)")           \
+  X(Kpa, POSITIVE, FIT, "force/length", "low-amplitude stiffness, eq. (11)")         \
+  X(Kr, POSITIVE, FIT, "force/length", "cell spring stiffness, eq. (2)")             \
+  X(C0, POSITIVE, FIT, "force (time/length)^alpha", "RT dashpot coefficient, eq. (1)") \
+  X(alpha, ALPHA, FIT, "-", "RT dashpot exponent, eq. (1)")                          \
+  X(Ff, POSITIVE, SETTING, "force", "STS friction threshold")                        \
+  X(k3, ANY, FIT, "force/length^3", "cubic spring")                                  \
+  X(k_asym, ANY, FIT, "force/length", "tension/compression asymmetry")               \
+  X(maxwell_k, NONNEG, FIT, "force/length", "Maxwell branch stiffness")              \
+  X(maxwell_tau, NONNEG, FIT, "time", "Maxwell relaxation time")                     \
+  X(viscous_c, NONNEG, FIT, "force time/length", "parallel linear dashpot")          \
+  X(mass, NONNEG, FIT, "force time^2/length", "inertia")                             \
+  X(backlash, NONNEG, FIT, "length", "clearance (total width)")                      \
+  X(mullins, FRACTION, FIT, "-", "Mullins softening fraction")                       \
+  X(smoothing, NONNEG, SETTING, "time/length", "eq. (14) smoothing s, 0 = off")      \
+  X(sat_force, NONNEG, FIT, "force", "softening spring force")                       \
+  X(sat_disp, NONNEG, FIT, "length", "softening spring displacement")                \
+  X(slack, FLAG, SETTING, "-", "tension only: floats free instead of pushing")       \
+  X(backlash_held, FLAG, SETTING, "-", "clearance end held (1) or free (0)")         \
+  X(fric_asym, SIGNED_FRACTION, FIT, "-", "dashpot level asymmetry a: C0 (1 +- a)")  \
+  X(spec_k, NONNEG, FIT, "force/length", "relaxation spectrum stiffness")            \
+  X(spec_exp, ANY, FIT, "-", "relaxation spectrum weight exponent")                  \
+  X(spec_tau_min, NONNEG, SETTING, "time", "relaxation spectrum fastest time")       \
+  X(spec_tau_max, NONNEG, SETTING, "time", "relaxation spectrum slowest time")
 
 /* Numerical settings of the implicit solve. NULL means rtb_settings_default. */
 typedef struct rtb_settings {
@@ -149,10 +206,14 @@ typedef struct rtb_state {
   rtb_real z_maxwell;          /* Maxwell branch internal displacement */
   rtb_real xb_max;             /* prior maximum |xb| (Mullins memory) */
   rtb_real vx;                 /* last input velocity estimate (inertia) */
+  rtb_real z_spec[RTB_MAX_BRANCHES]; /* relaxation-spectrum branch displacements */
   rtb_real reserved[8];
   long steps;                  /* committed steps */
   int last_iterations;         /* Newton iterations used by the last step */
-  int pad_;
+  int contact;                 /* phase of the bushing end in the last step:
+                                  2 no clearance/slack (xb = x), +1 / -1 in
+                                  contact at x - g/2 / x + g/2, 0 floating
+                                  free (F = 0), 3 held inside the clearance */
 } rtb_state;
 
 /* ------------------------------------------------------------------ */
@@ -163,6 +224,10 @@ typedef struct rtb_state {
  * Kr=3000 N/mm, C0=40 N (s/mm)^0.2, alpha=0.2; STS: Ff=40 N). */
 rtb_status rtb_params_default(rtb_params *p, int model);
 rtb_status rtb_params_validate(const rtb_params *p);
+/* rtb_params_validate that also names the offending field ("K0", "cells",
+ * "reserved", "maxwell_tau", ...) in *field ("" when valid; field may be
+ * NULL). The name is a static string. */
+rtb_status rtb_params_check(const rtb_params *p, const char **field);
 void rtb_settings_default(rtb_settings *s);
 const char *rtb_status_message(rtb_status status);
 

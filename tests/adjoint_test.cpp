@@ -83,6 +83,44 @@ TEST_P(AdjointIntegrators, ClearanceContactAndFreePhases) {
   expect_exact(p, recs);
 }
 
+// Issue #10's extensions: a held clearance (xb frozen inside the gap), the
+// friction asymmetry of the dashpot level and the relaxation spectrum.
+TEST_P(AdjointIntegrators, HeldClearanceAsymmetryAndSpectrum) {
+  rtb_params truth;
+  rtb_params_default(&truth, RTB_MODEL_RT);
+  truth.integrator = GetParam();
+  std::vector<Record> recs = rtb_test::paper_records(truth, 1.0);
+  rtb_params p = table1_point(truth);
+  // Not 0.05: the triangle record would then put x + g/2 exactly on the held
+  // position at a sample, a kink of the discrete map that FD straddles.
+  p.backlash = 0.0517;
+  p.backlash_held = 1;
+  p.fric_asym = 0.3;
+  p.spec_k = 300;
+  p.spec_exp = 0.4;
+  p.spec_tau_min = 0.002;
+  p.spec_tau_max = 2.0;
+  expect_exact(p, recs);
+}
+
+// A slack specimen floats free when it would push: the free phase's implicit
+// root and the taut phase (xb = x) alternate on every cycle of the records.
+TEST_P(AdjointIntegrators, SlackSpecimen) {
+  rtb_params truth;
+  rtb_params_default(&truth, RTB_MODEL_RT);
+  truth.integrator = GetParam();
+  std::vector<Record> recs = rtb_test::paper_records(truth, 1.0);
+  rtb_params p = table1_point(truth);
+  p.slack = 1;
+  p.maxwell_k = 100;
+  p.maxwell_tau = 0.1;
+  p.spec_k = 200;
+  p.spec_exp = -0.2;
+  p.spec_tau_min = 0.01;
+  p.spec_tau_max = 1.0;
+  expect_exact(p, recs);
+}
+
 INSTANTIATE_TEST_SUITE_P(Both, AdjointIntegrators,
                          ::testing::Values((int)RTB_INTEGRATOR_SDIRK2, (int)RTB_INTEGRATOR_BE));
 

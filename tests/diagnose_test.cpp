@@ -104,7 +104,23 @@ TEST(DiagnoseCli, ReportHasTheDocumentedKeys) {
   }
   EXPECT_TRUE(j["gain"].is_number());
   ASSERT_TRUE(j["candidates"].is_array());
-  EXPECT_EQ(j["candidates"].size(), candidate_vocabulary().size());  // every cause but none
+  size_t first_round = 0;
+  for (const auto &c : j["candidates"]) first_round += c["round"] == 0;
+  EXPECT_EQ(first_round, candidate_vocabulary().size());  // every cause but none
+  // Issue #10's report: the causes with sizes and held-out gain, the noise
+  // floor, and per-record figures of the extended model.
+  ASSERT_TRUE(j["causes"].is_array());
+  ASSERT_GE(j["causes"].size(), 1u);
+  EXPECT_EQ(j["causes"][0]["name"], "offset");
+  EXPECT_TRUE(j["causes"][0]["size"]["offset"]["value"].is_number());
+  EXPECT_TRUE(j["causes"][0]["gain"].is_number());
+  EXPECT_GT(j["noise_floor"]["error_holdout"].get<double>(), 0.0);
+  ASSERT_EQ(j["extended"]["records"].size(), sc.fit.size() + sc.holdout.size());
+  for (const auto &r : j["extended"]["records"]) {
+    EXPECT_TRUE(r["role"] == "fit" || r["role"] == "holdout");
+    EXPECT_GT(r["error"].get<double>(), 0.0);
+    EXPECT_LT(r["nrmse"].get<double>(), 0.05);
+  }
   for (const auto &c : j["candidates"]) {
     EXPECT_TRUE(c.contains("name"));
     EXPECT_TRUE(c.contains("params"));

@@ -131,7 +131,7 @@ TEST(Header, Contents) {
   EXPECT_NE(h.find("#include \"rt_bushing.h\"\n"), std::string::npos);
   EXPECT_NE(h.find("#ifndef RTB_PARAMS_H_test_bushing_rt\n#define RTB_PARAMS_H_test_bushing_rt\n"),
             std::string::npos);
-  EXPECT_NE(h.find("typedef char test_bushing_rt_check_abi[(RTB_ABI_VERSION == 2) ? 1 : -1];"),
+  EXPECT_NE(h.find("typedef char test_bushing_rt_check_abi[(RTB_ABI_VERSION == 3) ? 1 : -1];"),
             std::string::npos);
   EXPECT_NE(h.find("typedef char test_bushing_rt_check_scalar[(RTB_SCALAR_BYTES == 8) ? 1 : -1];"),
             std::string::npos);
@@ -151,8 +151,8 @@ TEST(Header, Contents) {
   for (size_t i = 0; (i = h.find("*/", i)) != std::string::npos; ++i) ++closes;
   EXPECT_EQ(opens, closes);
   EXPECT_EQ(h.find("??"), std::string::npos);
-  // 15 reserved zeros (ABI 2: smoothing took one), and nothing that looks like a date.
-  EXPECT_NE(h.find("reserved[13]"), std::string::npos);
+  // 6 reserved zeros (ABI 2 and 3 took the others), and nothing that looks like a date.
+  EXPECT_NE(h.find("reserved[6]"), std::string::npos);
   EXPECT_EQ(h.find("20" "2"), std::string::npos);
 }
 

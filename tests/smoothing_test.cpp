@@ -53,14 +53,14 @@ double rel_diff(const std::vector<double> &a, const std::vector<double> &b) {
 }  // namespace
 
 TEST(Smoothing, AbiSlotAndValidation) {
-  // smoothing took reserved[0] (the softening spring the next two): same
-  // size, same offsets of everything else.
+  // smoothing took reserved[0] (the softening spring the next two; ABI 3's
+  // extensions the next seven): same size, same offsets of everything else.
   static_assert(offsetof(rtb_params, smoothing) + 3 * sizeof(rtb_real) ==
-                    offsetof(rtb_params, reserved),
-                "smoothing, sat_force, sat_disp sit just before the reserved slots");
+                    offsetof(rtb_params, slack),
+                "smoothing, sat_force, sat_disp sit just before the ABI 3 fields");
   static_assert(sizeof(rtb_params) == 4 * sizeof(int) + 30 * sizeof(rtb_real),
                 "rtb_params keeps its size");
-  EXPECT_EQ(RTB_ABI_VERSION, 2);
+  EXPECT_EQ(RTB_ABI_VERSION, 3);
   for (int model : {RTB_MODEL_RT, RTB_MODEL_STS}) {
     rtb_params p;
     ASSERT_EQ(rtb_params_default(&p, model), RTB_OK);

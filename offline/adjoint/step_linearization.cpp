@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "rt_bushing/src/bushing_force.h"
 #include "rt_bushing/src/dashpot_law.h"
 #include "rt_bushing/src/tridiagonal.h"
 
@@ -17,15 +18,32 @@ constexpr double kGamma = RTB_SDIRK_GAMMA;
 constexpr double kRho = (1.0 - kGamma) / kGamma;  // c2 = y + rho (Y1 - y)
 
 // ------------------------------------------------------------- one stage
-// The dashpot derivatives (D = dv/df, dv/dC0 and dv/dalpha at fixed f) come
-// from dashpot_law.h: eq. (1), or eq. (14) when p.smoothing > 0. The
-// smoothing s itself is a fixed model setting, not a parameter: no dp entry.
+// The dashpot derivatives (D = dv/df, and dv/dC0, dv/dalpha, dv/dfric_asym at
+// fixed f) come from dashpot_law.h: eq. (1), or eq. (14) when p.smoothing > 0,
+// at the level C0 (1 +- fric_asym) of the force's sign. The smoothing s is a
+// fixed model setting, not a parameter: no dp entry.
+void stage_partials(const rtb_params &p, double f, double v, double *D, double *dC0,
+                    double *dalpha, double *dfa) {
+  const double L = rtb_dashpot_level(p.C0, p.fric_asym, f);
+  const double sgn = f < 0.0 ? -1.0 : 1.0;
+  const double dv_dL = rtb_dashpot_dv_dC0(f, v, L, p.alpha, p.smoothing);
+  *D = rtb_dashpot_dvdf(f, v, L, p.alpha, p.smoothing);
+  *dC0 = dv_dL * (1.0 + sgn * p.fric_asym);
+  *dfa = dv_dL * sgn * p.C0;
+  *dalpha = rtb_dashpot_dv_dalpha(f, v, L, p.alpha, p.smoothing);
+}
+
+StageLin stage_lin(const rtb_params &p, const StageView &st) {
+  StageLin l;
+  for (int k = 0; k < p.cells; ++k)
+    stage_partials(p, st.f[k], st.v[k], &l.D[k], &l.dv_dC0[k], &l.dv_dalpha[k], &l.dv_dfa[k]);
+  return l;
+}
+
 // Stage matrix A = I + h D K (transpose = false) or A^T = I + h K D.
-void stage_matrix(const rtb_params &p, const StageView &st, bool transpose, double *lo,
-                  double *di, double *up, double *D) {
+void stage_matrix(const rtb_params &p, const StageView &st, const double *D, bool transpose,
+                  double *lo, double *di, double *up) {
   const int n = p.cells;
-  for (int k = 0; k < n; ++k)
-    D[k] = st.lin ? st.lin->D[k] : rtb_dashpot_dvdf(st.f[k], st.v[k], p.C0, p.alpha, p.smoothing);
   for (int k = 0; k < n; ++k) {
     di[k] = 1.0 + st.h * D[k] * rtb_chain_diag(k, p.Kpa, p.Kr);
     const int l = transpose ? k - 1 : k, u = transpose ? k + 1 : k;
@@ -42,26 +60,19 @@ double dK_dKr_row(const StageView &st, int k, int n) {
   return s;
 }
 
-double dv_dC0(const rtb_params &p, const StageView &st, int k) {
-  return st.lin ? st.lin->dv_dC0[k]
-                : rtb_dashpot_dv_dC0(st.f[k], st.v[k], p.C0, p.alpha, p.smoothing);
-}
-double dv_dalpha(const rtb_params &p, const StageView &st, int k) {
-  return st.lin ? st.lin->dv_dalpha[k]
-                : rtb_dashpot_dv_dalpha(st.f[k], st.v[k], p.C0, p.alpha, p.smoothing);
-}
-
 // dY = A^-1 [dc + h D e1 db1 - h D (dK Y) + h phi_p dp].
 void stage_jvp(const rtb_params &p, const StageView &st, const double *dc, double db1,
                const double *dp, double *dY) {
   const int n = p.cells;
-  double lo[RTB_MAX_CELLS], di[RTB_MAX_CELLS], up[RTB_MAX_CELLS], D[RTB_MAX_CELLS],
-      work[RTB_MAX_CELLS];
-  stage_matrix(p, st, false, lo, di, up, D);
+  double lo[RTB_MAX_CELLS], di[RTB_MAX_CELLS], up[RTB_MAX_CELLS], work[RTB_MAX_CELLS];
+  const StageLin own = st.lin ? StageLin() : stage_lin(p, st);
+  const StageLin &l = st.lin ? *st.lin : own;
+  stage_matrix(p, st, l.D, false, lo, di, up);
   for (int k = 0; k < n; ++k) {
     const double dKY = dp[P_Kr] * dK_dKr_row(st, k, n) + (k == 0 ? dp[P_Kpa] * st.y[0] : 0.0);
-    dY[k] = dc[k] + st.h * D[k] * ((k == 0 ? db1 : 0.0) - dKY) +
-            st.h * (dv_dC0(p, st, k) * dp[P_C0] + dv_dalpha(p, st, k) * dp[P_alpha]);
+    dY[k] = dc[k] + st.h * l.D[k] * ((k == 0 ? db1 : 0.0) - dKY) +
+            st.h * (l.dv_dC0[k] * dp[P_C0] + l.dv_dalpha[k] * dp[P_alpha] +
+                    l.dv_dfa[k] * dp[P_fric_asym]);
   }
   rtb_tridiag_solve(n, lo, di, up, dY, work);
 }
@@ -70,81 +81,74 @@ void stage_jvp(const rtb_params &p, const StageView &st, const double *dc, doubl
 double stage_vjp(const rtb_params &p, const StageView &st, const double *Ybar, double *cbar,
                  double *pbar) {
   const int n = p.cells;
-  double lo[RTB_MAX_CELLS], di[RTB_MAX_CELLS], up[RTB_MAX_CELLS], D[RTB_MAX_CELLS],
-      mu[RTB_MAX_CELLS], work[RTB_MAX_CELLS];
-  stage_matrix(p, st, true, lo, di, up, D);
+  double lo[RTB_MAX_CELLS], di[RTB_MAX_CELLS], up[RTB_MAX_CELLS], mu[RTB_MAX_CELLS] = {0},
+      work[RTB_MAX_CELLS];
+  const StageLin own = st.lin ? StageLin() : stage_lin(p, st);
+  const StageLin &l = st.lin ? *st.lin : own;
+  stage_matrix(p, st, l.D, true, lo, di, up);
   for (int k = 0; k < n; ++k) mu[k] = Ybar[k];
   rtb_tridiag_solve(n, lo, di, up, mu, work);
   for (int k = 0; k < n; ++k) {
     cbar[k] += mu[k];
-    pbar[P_Kr] -= st.h * D[k] * mu[k] * dK_dKr_row(st, k, n);
-    pbar[P_C0] += st.h * mu[k] * dv_dC0(p, st, k);
-    pbar[P_alpha] += st.h * mu[k] * dv_dalpha(p, st, k);
+    pbar[P_Kr] -= st.h * l.D[k] * mu[k] * dK_dKr_row(st, k, n);
+    pbar[P_C0] += st.h * mu[k] * l.dv_dC0[k];
+    pbar[P_alpha] += st.h * mu[k] * l.dv_dalpha[k];
+    pbar[P_fric_asym] += st.h * mu[k] * l.dv_dfa[k];
   }
-  pbar[P_Kpa] -= st.h * D[0] * mu[0] * st.y[0];
-  return st.h * D[0] * mu[0];
+  pbar[P_Kpa] -= st.h * l.D[0] * mu[0] * st.y[0];
+  return st.h * l.D[0] * mu[0];
 }
 
-// ------------------------------------------------------------- partials
-// Maxwell branch, exact for xb linear over the step (step.cpp):
-//   z_new = xb_new - s tau + E (z_old - xb_old + s tau),  s = (xb_new - xb_old)/dt.
-struct MaxwellLin {
-  double E = 0, dtau = 0, dxb_new = 0, dxb_old = 0;
+// ------------------------------------------------------------- branches
+// The Maxwell branch and the spectrum's, linearized by bushing_force.h's own
+// update (rtb_maxwell_step); branch index -1 is the Maxwell branch.
+struct Branches {
+  rtb_spectrum sp;
+  rtb_maxwell_lin mx;                       // Maxwell branch (zeros when off)
+  rtb_maxwell_lin s[RTB_MAX_BRANCHES];      // spectrum branches
 };
-MaxwellLin maxwell_lin(const StepView &v) {
-  MaxwellLin m;
+Branches branches_lin(const StepView &v) {
+  Branches b;
+  std::memset(&b, 0, sizeof b);
   const rtb_params &p = *v.p;
-  if (!(p.maxwell_tau > 0.0)) return m;  // branch off: z frozen
-  const double tau = p.maxwell_tau, dt = v.dt;
-  const double s = (v.xb_new - v.xb_old) / dt;
-  m.E = std::exp(-dt / tau);
-  m.dtau = -s + m.E * s + (v.z_old - v.xb_old + s * tau) * m.E * dt / (tau * tau);
-  m.dxb_new = 1.0 - tau / dt + m.E * tau / dt;
-  m.dxb_old = tau / dt - m.E - m.E * tau / dt;
-  return m;
+  rtb_spectrum_layout(&p, &b.sp);
+  if (p.maxwell_tau > 0.0) rtb_maxwell_step(p.maxwell_tau, v.dt, v.xb_old, v.xb_new, v.z_old, &b.mx);
+  for (int j = 0; j < b.sp.M; ++j)
+    rtb_maxwell_step(b.sp.tau[j], v.dt, v.xb_old, v.xb_new, v.zs_old[j], &b.s[j]);
+  return b;
 }
 
-// Partial derivatives of the force at fixed states (step.cpp,
-// rtb_bushing_force, plus inertia).
+// Partial derivatives of the force at fixed states (bushing_force.h, plus
+// inertia), mapped onto the parameter ids.
 struct ForceLin {
-  double xb_new = 0, xb_old = 0, m_old = 0;  // dF/d(state entries); dF/dy1 = -Kpa, dF/dz = -Kmaxwell
-  double g[P_COUNT] = {0};                   // dF/dp
+  rtb_force_lin f;
+  double g[P_COUNT] = {0};  // dF/dp
 };
-ForceLin force_lin(const StepView &v, bool with_inertia) {
+ForceLin force_lin(const StepView &v, const rtb_spectrum &sp, bool with_inertia) {
   const rtb_params &p = *v.p;
   ForceLin L;
-  const double xb = v.xb_new, ax = std::fabs(xb), m = v.xbmax_old, dt = v.dt;
-  const double sgn = xb > 0.0 ? 1.0 : (xb < 0.0 ? -1.0 : 0.0);
-  // Mullins: eta = 1 - mu (1 - |xb|/m) below the prior maximum m.
-  const bool below = ax < m;
-  const double deta_dmu = below ? -(1.0 - ax / m) : 0.0;
-  const double eta = (p.mullins > 0.0 && below) ? 1.0 + p.mullins * deta_dmu : 1.0;
-  const double deta_dxb = (p.mullins > 0.0 && below) ? p.mullins * sgn / m : 0.0;
-  const double deta_dm = (p.mullins > 0.0 && below) ? -p.mullins * ax / (m * m) : 0.0;
-  // Softening spring Fs tanh(xb/xs): d/dxb = Fs/xs sech^2, d/dFs = tanh,
-  // d/dxs = -Fs sech^2 xb/xs^2 (sech^2 = 1 - tanh^2).
-  const double xs = p.sat_disp, th = xs > 0.0 ? std::tanh(xb / xs) : 0.0, sech2 = 1.0 - th * th;
-  L.xb_new = p.K0 * (eta + xb * deta_dxb) + p.Kpa + 3.0 * p.k3 * xb * xb + p.k_asym * sgn +
-             p.maxwell_k + p.viscous_c / dt + (xs > 0.0 ? p.sat_force / xs * sech2 : 0.0);
-  L.g[P_sat_force] = th;
-  L.g[P_sat_disp] = xs > 0.0 ? -p.sat_force * sech2 * xb / (xs * xs) : 0.0;
-  L.xb_old = -p.viscous_c / dt;
-  L.m_old = p.K0 * xb * deta_dm;
-  L.g[P_K0] = xb * eta;
-  L.g[P_Kpa] = xb - v.y_new[0];
-  L.g[P_k3] = xb * xb * xb;
-  L.g[P_k_asym] = ax;
-  L.g[P_maxwell_k] = xb - v.z_new;
-  L.g[P_viscous_c] = (xb - v.xb_old) / dt;
-  L.g[P_mullins] = p.K0 * xb * deta_dmu;
-  if (with_inertia) L.g[P_mass] = (v.vx_new - v.vx_old) / dt;
+  rtb_force_eval(&p, v.xb_new, v.xb_old, v.xbmax_old, v.y_new[0], v.z_new, v.zs_new, &sp, v.dt,
+                 &L.f);
+  const rtb_force_lin &f = L.f;
+  L.g[P_K0] = f.d_K0;
+  L.g[P_Kpa] = f.d_Kpa;
+  L.g[P_k3] = f.d_k3;
+  L.g[P_k_asym] = f.d_k_asym;
+  L.g[P_maxwell_k] = f.d_maxwell_k;
+  L.g[P_viscous_c] = f.d_viscous_c;
+  L.g[P_mullins] = f.d_mullins;
+  L.g[P_sat_force] = f.d_sat_force;
+  L.g[P_sat_disp] = f.d_sat_disp;
+  L.g[P_spec_k] = f.d_spec_k;
+  L.g[P_spec_exp] = f.d_spec_exp;
+  if (with_inertia) L.g[P_mass] = (v.vx_new - v.vx_old) / v.dt;
   return L;
 }
 
 // ------------------------------------------------------------- C and Fo
 // State map C with the bushing displacement's own tangent dxb given.
-void chain_jvp(const StepView &v, const StateDual &d, const double *dp, double dxb,
-               StateDual &dn) {
+void chain_jvp(const StepView &v, const Branches &br, const StateDual &d, const double *dp,
+               double dxb, StateDual &dn) {
   const rtb_params &p = *v.p;
   const int n = p.cells;
   if (p.model == RTB_MODEL_RT) {
@@ -159,25 +163,37 @@ void chain_jvp(const StepView &v, const StateDual &d, const double *dp, double d
       stage_jvp(p, v.st[1], dc2, dp[P_Kpa] * v.xb_new + p.Kpa * dxb, dp, dn.y);
     }
   }
-  const MaxwellLin mx = maxwell_lin(v);
-  dn.z = mx.E * d.z + mx.dtau * dp[P_maxwell_tau] + mx.dxb_new * dxb + mx.dxb_old * d.xb;
+  const rtb_maxwell_lin &mx = br.mx;
+  dn.z = p.maxwell_tau > 0.0 ? mx.d_z_old * d.z + mx.d_tau * dp[P_maxwell_tau] +
+                                   mx.d_xb_new * dxb + mx.d_xb_old * d.xb
+                             : d.z;
+  for (int j = 0; j < br.sp.M; ++j)
+    dn.zs[j] = br.s[j].d_z_old * d.zs[j] + br.s[j].d_xb_new * dxb + br.s[j].d_xb_old * d.xb;
   dn.xb = dxb;
   dn.m = std::fabs(v.xb_new) > v.xbmax_old ? (v.xb_new > 0 ? dxb : -dxb) : d.m;
 }
 
 // Transpose of chain_jvp; *xbbar receives the cotangent of xb_new.
-void chain_vjp(const StepView &v, const StateDual &bn, StateDual &bo, double *pbar,
-               double *xbbar) {
+void chain_vjp(const StepView &v, const Branches &br, const StateDual &bn, StateDual &bo,
+               double *pbar, double *xbbar) {
   const rtb_params &p = *v.p;
   const int n = p.cells;
   double dxb_bar = bn.xb;
   if (std::fabs(v.xb_new) > v.xbmax_old) dxb_bar += (v.xb_new > 0 ? bn.m : -bn.m);
   else bo.m += bn.m;
-  const MaxwellLin mx = maxwell_lin(v);
-  bo.z += mx.E * bn.z;
-  pbar[P_maxwell_tau] += mx.dtau * bn.z;
-  dxb_bar += mx.dxb_new * bn.z;
-  bo.xb += mx.dxb_old * bn.z;
+  if (p.maxwell_tau > 0.0) {
+    bo.z += br.mx.d_z_old * bn.z;
+    pbar[P_maxwell_tau] += br.mx.d_tau * bn.z;
+    dxb_bar += br.mx.d_xb_new * bn.z;
+    bo.xb += br.mx.d_xb_old * bn.z;
+  } else {
+    bo.z += bn.z;
+  }
+  for (int j = 0; j < br.sp.M; ++j) {
+    bo.zs[j] += br.s[j].d_z_old * bn.zs[j];
+    dxb_bar += br.s[j].d_xb_new * bn.zs[j];
+    bo.xb += br.s[j].d_xb_old * bn.zs[j];
+  }
   if (p.model == RTB_MODEL_RT) {
     if (rtb_integrator_stages(&p) == 1) {
       const double b1 = stage_vjp(p, v.st[0], bn.y, bo.y, pbar);
@@ -202,60 +218,73 @@ void chain_vjp(const StepView &v, const StateDual &bn, StateDual &bo, double *pb
   *xbbar = dxb_bar;
 }
 
-double force_jvp(const StepView &v, const StateDual &d, const StateDual &dn, const double *dp,
-                 bool with_inertia) {
-  const ForceLin L = force_lin(v, with_inertia);
-  double dF = -v.p->Kpa * dn.y[0] - v.p->maxwell_k * dn.z + L.xb_new * dn.xb +
-              L.xb_old * d.xb + L.m_old * d.m;
+// dF/d(memory): y1 -> -Kpa, z -> -maxwell_k, z_j -> -spec_k w_j.
+double force_jvp(const StepView &v, const Branches &br, const StateDual &d, const StateDual &dn,
+                 const double *dp, bool with_inertia) {
+  const rtb_params &p = *v.p;
+  const ForceLin L = force_lin(v, br.sp, with_inertia);
+  double dF = -p.Kpa * dn.y[0] - p.maxwell_k * dn.z + L.f.d_xb * dn.xb + L.f.d_xb_old * d.xb +
+              L.f.d_xbmax * d.m;
+  for (int j = 0; j < br.sp.M; ++j) dF -= p.spec_k * br.sp.w[j] * dn.zs[j];
   for (int i = 0; i < P_COUNT; ++i) dF += L.g[i] * dp[i];
   return dF;
 }
 
-void force_vjp(const StepView &v, double Fbar, StateDual &bo, StateDual &bn, double *pbar,
-               bool with_inertia) {
-  const ForceLin L = force_lin(v, with_inertia);
-  bn.y[0] -= v.p->Kpa * Fbar;
-  bn.z -= v.p->maxwell_k * Fbar;
-  bn.xb += L.xb_new * Fbar;
-  bo.xb += L.xb_old * Fbar;
-  bo.m += L.m_old * Fbar;
+void force_vjp(const StepView &v, const Branches &br, double Fbar, StateDual &bo, StateDual &bn,
+               double *pbar, bool with_inertia) {
+  const rtb_params &p = *v.p;
+  const ForceLin L = force_lin(v, br.sp, with_inertia);
+  bn.y[0] -= p.Kpa * Fbar;
+  bn.z -= p.maxwell_k * Fbar;
+  for (int j = 0; j < br.sp.M; ++j) bn.zs[j] -= p.spec_k * br.sp.w[j] * Fbar;
+  bn.xb += L.f.d_xb * Fbar;
+  bo.xb += L.f.d_xb_old * Fbar;
+  bo.m += L.f.d_xbmax * Fbar;
   for (int i = 0; i < P_COUNT; ++i) pbar[i] += L.g[i] * Fbar;
 }
 
 // ------------------------------------------------------------- clearance B
-// Free phase: F_bushing(xb_new) = 0, so dxb = -F_s / F_xb with F_s the
-// bushing force's tangent at fixed xb_new and F_xb its total xb derivative.
-double free_phase_stiffness(const StepView &v) {
+// Phases (rtb_state.contact): 2 xb = x (data); +-1 xb = x -+ g/2; 3 held,
+// xb = xb_old; 0 floating, F_bushing(xb_new) = 0, so dxb = -F_s / F_xb with
+// F_s the bushing force's tangent at fixed xb_new and F_xb its total xb
+// derivative.
+double free_phase_stiffness(const StepView &v, const Branches &br) {
   StateDual z, t;
   z.clear();
   t.clear();
   const double zero[P_COUNT] = {0};
-  chain_jvp(v, z, zero, 1.0, t);
-  return force_jvp(v, z, t, zero, false);
+  chain_jvp(v, br, z, zero, 1.0, t);
+  return force_jvp(v, br, z, t, zero, false);
 }
 
-double clearance_jvp(const StepView &v, const StateDual &d, const double *dp) {
-  if (v.contact == 2) return 0.0;  // xb = x: input data
+double clearance_jvp(const StepView &v, const Branches &br, const StateDual &d, const double *dp) {
+  if (v.contact == 2) return 0.0;
+  if (v.contact == 3) return d.xb;
   if (v.contact != 0) return -0.5 * v.contact * dp[P_backlash];
   StateDual t;
   t.clear();
-  chain_jvp(v, d, dp, 0.0, t);
-  return -force_jvp(v, d, t, dp, false) / free_phase_stiffness(v);
+  chain_jvp(v, br, d, dp, 0.0, t);
+  return -force_jvp(v, br, d, t, dp, false) / free_phase_stiffness(v, br);
 }
 
-void clearance_vjp(const StepView &v, double xbbar, StateDual &bo, double *pbar) {
+void clearance_vjp(const StepView &v, const Branches &br, double xbbar, StateDual &bo,
+                   double *pbar) {
   if (v.contact == 2 || xbbar == 0.0) return;
+  if (v.contact == 3) {
+    bo.xb += xbbar;
+    return;
+  }
   if (v.contact != 0) {
     pbar[P_backlash] += -0.5 * v.contact * xbbar;
     return;
   }
-  const double seed = -xbbar / free_phase_stiffness(v);
+  const double seed = -xbbar / free_phase_stiffness(v, br);
   StateDual bn;
   bn.clear();
-  force_vjp(v, seed, bo, bn, pbar, false);
+  force_vjp(v, br, seed, bo, bn, pbar, false);
   bn.xb = 0.0;  // xb_new is held fixed in F_s
   double ignored;
-  chain_vjp(v, bn, bo, pbar, &ignored);
+  chain_vjp(v, br, bn, bo, pbar, &ignored);
 }
 
 }  // namespace
@@ -264,29 +293,26 @@ void step_precompute(StepView &v, StageLin lin[2]) {
   const rtb_params &p = *v.p;
   if (p.model != RTB_MODEL_RT) return;
   for (int s = 0; s < rtb_integrator_stages(&p); ++s) {
-    const StageView &st = v.st[s];
-    for (int k = 0; k < p.cells; ++k) {
-      lin[s].D[k] = rtb_dashpot_dvdf(st.f[k], st.v[k], p.C0, p.alpha, p.smoothing);
-      lin[s].dv_dC0[k] = rtb_dashpot_dv_dC0(st.f[k], st.v[k], p.C0, p.alpha, p.smoothing);
-      lin[s].dv_dalpha[k] = rtb_dashpot_dv_dalpha(st.f[k], st.v[k], p.C0, p.alpha, p.smoothing);
-    }
+    lin[s] = stage_lin(p, v.st[s]);
     v.st[s].lin = &lin[s];
   }
 }
 
 double step_jvp(const StepView &v, const StateDual &d_old, const double *dp, StateDual &d_new) {
-  const double dxb = clearance_jvp(v, d_old, dp);
-  chain_jvp(v, d_old, dp, dxb, d_new);
-  return force_jvp(v, d_old, d_new, dp, true);
+  const Branches br = branches_lin(v);
+  const double dxb = clearance_jvp(v, br, d_old, dp);
+  chain_jvp(v, br, d_old, dp, dxb, d_new);
+  return force_jvp(v, br, d_old, d_new, dp, true);
 }
 
 void step_vjp(const StepView &v, const StateDual &bar_new, double Fbar, StateDual &bar_old,
               double *pbar) {
+  const Branches br = branches_lin(v);
   StateDual bn = bar_new;
-  force_vjp(v, Fbar, bar_old, bn, pbar, true);
+  force_vjp(v, br, Fbar, bar_old, bn, pbar, true);
   double xbbar = 0.0;
-  chain_vjp(v, bn, bar_old, pbar, &xbbar);
-  clearance_vjp(v, xbbar, bar_old, pbar);
+  chain_vjp(v, br, bn, bar_old, pbar, &xbbar);
+  clearance_vjp(v, br, xbbar, bar_old, pbar);
 }
 
 }  // namespace rtb

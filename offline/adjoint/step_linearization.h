@@ -8,11 +8,15 @@
 // smoothing is needed, unlike the continuous adjoint of eq. (12).
 //
 // A step is the composition
-//   xb_new = B(state_old, p)            clearance: x -+ g/2 in contact, or the
-//                                       root of F_bushing(xb) = 0 when free
+//   xb_new = B(state_old, p)            clearance/slack: x -+ g/2 in contact,
+//                                       the root of F_bushing(xb) = 0 when
+//                                       floating, xb_old when held
 //   state_new = C(state_old, p, xb_new) stages, Maxwell branch, Mullins memory
 //   F = Fo(state_old, state_new, p)     eq. (11) + extensions + inertia
-// and both functions below linearize all of it.
+// and both functions below linearize all of it. The force law, the branch
+// updates and the dashpot law are the stepper's own inline functions
+// (rt_bushing/src/bushing_force.h, dashpot_law.h): one definition of the
+// physics for the forward model and its adjoint.
 #ifndef RTB_OFFLINE_STEP_LINEARIZATION_H
 #define RTB_OFFLINE_STEP_LINEARIZATION_H
 
@@ -25,6 +29,7 @@ namespace rtb {
 struct StateDual {
   double y[RTB_MAX_CELLS];  // cell DOFs
   double z;                 // Maxwell branch displacement
+  double zs[RTB_MAX_BRANCHES];  // relaxation-spectrum branch displacements
   double xb;                // bushing displacement (moves only with a clearance)
   double m;                 // Mullins memory max |xb|
   void clear();

@@ -33,14 +33,17 @@ nlohmann::ordered_json num(double v) {
 }  // namespace
 
 void print_diagnosis(const DiagnoseResult &R) {
-  std::printf("%-16s %10s %10s %10s %8s %6s  %s\n", "candidate", "fit %", "holdout %", "dBIC", "z",
-              "gain", "verdict");
-  std::printf("%-16s %10.3f %10.3f\n", "(plain RT)", 100 * R.baseline_error_fit,
-              100 * R.baseline_error_holdout);
-  for (const CandidateOutcome &c : R.candidates)
-    std::printf("%-16s %10.3f %10.3f %10.4g %8.3g %5.0f%%  %s\n", c.cand.name.c_str(),
+  std::printf("%-2s %-22s %10s %10s %10s %8s %6s  %s\n", "r", "candidate", "fit %", "holdout %",
+              "dBIC", "z", "gain", "verdict");
+  std::printf("%-2s %-22s %10.3f %10.3f   (noise floor %.3f%% / %.3f%%)\n", "", "(plain RT)",
+              100 * R.baseline_error_fit, 100 * R.baseline_error_holdout, 100 * R.floor.error_fit,
+              100 * R.floor.error_holdout);
+  for (const CandidateOutcome &c : R.candidates) {
+    const std::string name = c.cand.name + (c.cand.variant.empty() ? "" : " (" + c.cand.variant + ")");
+    std::printf("%-2d %-22s %10.3f %10.3f %10.4g %8.3g %5.0f%%  %s\n", c.round, name.c_str(),
                 100 * c.fit.error, 100 * c.error_holdout, c.dbic, c.amplitude_z, 100 * c.gain,
                 c.eligible ? "eligible" : c.why.c_str());
+  }
   if (!R.residuals.empty()) {
     const RecordResiduals &r = R.residuals.front();
     std::printf("baseline residual signatures (%s):", r.path.c_str());
@@ -51,12 +54,52 @@ void print_diagnosis(const DiagnoseResult &R) {
   std::printf("%s  [%.1f s]\n", R.verdict.c_str(), R.wall_seconds);
 }
 
+nlohmann::ordered_json causes_json(const DiagnoseResult &R) {
+  nlohmann::ordered_json a = nlohmann::ordered_json::array();
+  for (const Cause &c : R.causes) {
+    nlohmann::ordered_json e;
+    e["name"] = c.cand.name;
+    if (!c.cand.variant.empty()) e["variant"] = c.cand.variant;
+    e["physical"] = c.cand.physical;
+    e["description"] = c.description;
+    nlohmann::ordered_json sizes;
+    for (size_t i = 0; i < c.names.size(); ++i)
+      sizes[c.names[i]] = {{"value", c.value[i]}, {"stddev", num(c.stddev[i])}};
+    e["size"] = sizes;
+    e["gain"] = num(c.gain);
+    e["error_holdout"] = num(c.error_holdout);
+    a.push_back(e);
+  }
+  return a;
+}
+
 nlohmann::ordered_json diagnosis_json(const DiagnoseResult &R, const std::vector<Record> &fit,
                                       const std::vector<Record> &hold) {
   nlohmann::ordered_json j;
   j["cause"] = R.cause;
+  j["causes"] = causes_json(R);
   j["verdict"] = R.verdict;
-  j["physical"] = R.chosen >= 0 ? R.candidates[(size_t)R.chosen].cand.physical : true;
+  j["physical"] = R.causes.empty() || R.causes.front().cand.physical;
+  j["noise_floor"] = {{"error_fit", R.floor.error_fit},
+                      {"error_holdout", R.floor.error_holdout},
+                      {"sigma_fit", R.floor.sigma_fit},
+                      {"sigma_holdout", R.floor.sigma_holdout},
+                      {"baseline_ratio_holdout", num(R.baseline_error_holdout / R.floor.error_holdout)},
+                      {"extended_ratio_holdout", num(R.extended_error_holdout / R.floor.error_holdout)},
+                      {"method", "1.4826 MAD of the 4th differences of the residual / sqrt(70)"}};
+  j["displacement_filter"] = {{"cutoff_hz", R.denoise.cutoff_hz},
+                              {"sigma_x", R.denoise.sigma_x},
+                              {"sigma_F", R.denoise.sigma_F},
+                              {"noise_ratio", R.denoise.noise_ratio}};
+  j["residual_above_floor"] = R.residual_above_floor;
+  if (R.residual_above_floor)
+    j["signature"] = {{"text", R.signature.text},
+                      {"dominant_hz", R.signature.dominant_hz},
+                      {"dominant_share", R.signature.dominant_share},
+                      {"input_share_at_dominant", R.signature.input_share},
+                      {"trend_share", R.signature.trend_share},
+                      {"stiffness_drift_share", R.signature.drift_share},
+                      {"where", R.signature.where}};
   j["baseline"] = {{"params", params_to_json(R.baseline.p)},
                    {"error_fit", R.baseline_error_fit},
                    {"error_holdout", num(R.baseline_error_holdout)},
@@ -66,24 +109,34 @@ nlohmann::ordered_json diagnosis_json(const DiagnoseResult &R, const std::vector
                                 {"error_holdout", num(R.extended_error_holdout)},
                                 {"delay", R.extended.delay},
                                 {"offset", R.extended.offset}};
-  if (R.chosen >= 0) ext["fitted"] = ext_params_json(R.candidates[(size_t)R.chosen].fit);
+  if (!R.causes.empty()) ext["fitted"] = ext_params_json(R.extended_fit);
+  nlohmann::ordered_json recs = nlohmann::ordered_json::array();
+  for (const RecordFigures &f : R.extended_records)
+    recs.push_back({{"file", f.file}, {"role", f.holdout ? "holdout" : "fit"},
+                    {"error", num(f.error)}, {"nrmse", num(f.nrmse)}});
+  ext["records"] = recs;
   j["extended"] = ext;
   j["gain"] = num(R.gain);
   j["baseline_error_holdout_trimmed"] = num(R.baseline_error_holdout_trimmed);
-  j["selection"] = "lowest trimmed held-out error among candidates with z >= 3, delta BIC >= 10, trimmed gain >= 15%";
+  j["selection"] = "per round, the lowest trimmed held-out error among candidates with z >= 3, "
+                   "delta BIC >= 10, trimmed gain >= 15% (10% for later causes), not contradicted "
+                   "by the data; rounds continue while the residual is above 1.3x the noise floor";
   j["holdout_used"] = R.has_holdout;
   nlohmann::ordered_json cs = nlohmann::ordered_json::array();
   for (const CandidateOutcome &c : R.candidates) {
     nlohmann::ordered_json e;
     e["name"] = c.cand.name;
+    if (!c.cand.variant.empty()) e["variant"] = c.cand.variant;
+    e["round"] = c.round;
     e["physical"] = c.cand.physical;
     e["fitted_jointly"] = c.joint;
-    std::string amp = c.cand.extra.empty() ? (c.cand.delay ? "delay" : "offset")
-                                           : param_name(c.cand.extra[0]);
+    std::string amp = c.cand.extra.empty()
+                          ? (c.cand.delay ? "delay" : (c.cand.offset ? "offset" : c.cand.name))
+                          : param_name(c.cand.extra[0]);
     if (c.joint) {
       e["params"] = ext_params_json(c.fit);
       e["error_fit"] = num(c.fit.error);
-    } else {  // screened out: the score-test estimate, RT held at the baseline
+    } else {  // screened out: the score-test estimate, the model held
       e["params"] = {{amp, {{"value", c.screen.value}}}};
       e["error_fit"] = num(R.baseline_error_fit * std::sqrt(std::fmax(0.0, 1.0 - c.screen.dJ)));
     }
@@ -126,12 +179,14 @@ std::string diagnosis_header(const DiagnoseResult &R, const std::vector<Record> 
   }
   hi.error = R.extended_error_fit;
   hi.provenance.push_back("rtb diagnose: " + R.verdict);
-  if (R.chosen >= 0) {
-    const ExtFitResult &f = R.candidates[(size_t)R.chosen].fit;
+  if (!R.causes.empty()) {
+    const ExtFitResult &f = R.extended_fit;
     if (f.stddev_valid)
       for (size_t i = 0; i < f.names.size(); ++i)
         hi.std_devs[f.names[i]] = f.stddev[(Eigen::Index)i];
-    if (!R.candidates[(size_t)R.chosen].cand.physical)
+    bool artefact = false;
+    for (const Cause &c : R.causes) artefact = artefact || !c.cand.physical;
+    if (artefact)
       hi.provenance.push_back("measurement artefact corrected in the data (delay " +
                               std::to_string(R.extended.delay) + " s, offset " +
                               std::to_string(R.extended.offset) + "); not part of the element");

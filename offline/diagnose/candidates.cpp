@@ -42,33 +42,65 @@ DataScales data_scales(const std::vector<Record> &recs) {
   return s;
 }
 
+namespace {
+void set_held(rtb_params &p, const DataScales &) { p.backlash_held = 1; }
+void set_slack(rtb_params &p, const DataScales &) { p.slack = 1; }
+// Branch times from a few sample intervals to the longest record: the whole
+// range the data can resolve, two branches per decade (bushing_force.h).
+void set_spectrum(rtb_params &p, const DataScales &s) {
+  p.spec_tau_min = 3.0 * s.dt;
+  p.spec_tau_max = std::max(p.spec_tau_min, s.duration);
+  const double cap = p.spec_tau_min * std::pow(10.0, (RTB_MAX_BRANCHES - 1) / 2.0);
+  p.spec_tau_max = std::min(p.spec_tau_max, cap);
+}
+}  // namespace
+
 const std::vector<Candidate> &candidate_vocabulary() {
   static const std::vector<Candidate> v = {
-      {"cubic_stiffness", true, {P_k3}, false, false},
-      {"asymmetry", true, {P_k_asym}, false, false},
-      {"maxwell", true, {P_maxwell_k, P_maxwell_tau}, false, false},
-      {"viscous", true, {P_viscous_c}, false, false},
-      {"backlash", true, {P_backlash}, false, false},
-      {"mullins", true, {P_mullins}, false, false},
-      {"delay", false, {}, true, false},
-      {"inertia", true, {P_mass}, false, false},
-      {"offset", false, {}, false, true},
-      {"softening", true, {P_sat_force, P_sat_disp}, false, false},
+      {"cubic_stiffness", true, {P_k3}, false, false, "", nullptr},
+      {"asymmetry", true, {P_k_asym}, false, false, "", nullptr},
+      {"maxwell", true, {P_maxwell_k, P_maxwell_tau}, false, false, "", nullptr},
+      {"viscous", true, {P_viscous_c}, false, false, "", nullptr},
+      {"backlash", true, {P_backlash}, false, false, "", nullptr},
+      {"backlash", true, {P_backlash}, false, false, "held", set_held},
+      {"mullins", true, {P_mullins}, false, false, "", nullptr},
+      {"delay", false, {}, true, false, "", nullptr},
+      {"inertia", true, {P_mass}, false, false, "", nullptr},
+      {"offset", false, {}, false, true, "", nullptr},
+      {"softening", true, {P_sat_force, P_sat_disp}, false, false, "", nullptr},
+      {"slack", true, {}, false, false, "", set_slack},
+      {"relaxation_spectrum", true, {P_spec_k, P_spec_exp}, false, false, "", set_spectrum},
+      {"friction_asymmetry", true, {P_fric_asym}, false, false, "", nullptr},
   };
   return v;
 }
 
-ExtFitSpec candidate_spec(const Candidate &c, const DataScales &s) {
+bool candidates_conflict(const Candidate &a, const Candidate &b) {
+  if (a.name == b.name) return true;
+  auto is = [&](const char *n, const char *var) {
+    return (a.name == n && a.variant == var) || (b.name == n && b.variant == var);
+  };
+  return is("slack", "") && is("backlash", "held");
+}
+
+ExtFitSpec candidate_spec(const Candidate &c, const DataScales &s) { return combined_spec({c}, s); }
+
+ExtFitSpec combined_spec(const std::vector<Candidate> &cs, const DataScales &s) {
   ExtFitSpec spec;
   spec.free = core_params();
-  spec.free.insert(spec.free.end(), c.extra.begin(), c.extra.end());
-  spec.fit_delay = c.delay;
-  spec.fit_offset = c.offset;
+  for (const Candidate &c : cs) {
+    for (ParamId id : c.extra)
+      if (std::find(spec.free.begin(), spec.free.end(), id) == spec.free.end()) spec.free.push_back(id);
+    spec.fit_delay = spec.fit_delay || c.delay;
+    spec.fit_offset = spec.fit_offset || c.offset;
+  }
   spec.scale[P_k3] = 0.1 * s.Fmax / (s.Xmax * s.Xmax * s.Xmax);
   spec.scale[P_k_asym] = 0.1 * s.Ksec;
+  spec.scale[P_spec_exp] = 0.3;
   // Step unit of the sizes optimized linearly from 0 (param_transform.h).
-  for (ParamId id : c.extra)
-    if (is_ramp(id) && id != P_mullins) spec.scale[id] = extra_start_value(id, s);
+  for (ParamId id : spec.free)
+    if (is_ramp(id) && id != P_mullins && id != P_fric_asym && id != P_K0)
+      spec.scale[id] = extra_start_value(id, s);
   spec.delay_scale = 10.0 * s.dt;
   spec.offset_scale = 0.01 * s.Fmax;
   return spec;
@@ -84,6 +116,7 @@ double extra_start_value(ParamId id, const DataScales &s) {
     case P_backlash: return 0.02 * s.Xmax;
     case P_sat_force: return 0.05 * s.Fmax;
     case P_sat_disp: return 0.1 * s.Xmax;
+    case P_spec_k: return 0.1 * s.Ksec;
     default: return 0.0;
   }
 }
@@ -102,7 +135,8 @@ std::string describe_effect(const Candidate &c, const ExtModel &m) {
   else if (c.name == "viscous")
     std::snprintf(b, sizeof b, "linear damping c = %.4g", p.viscous_c);
   else if (c.name == "backlash")
-    std::snprintf(b, sizeof b, "backlash of %.4g", p.backlash);
+    std::snprintf(b, sizeof b, "backlash of %.4g (%s end)", p.backlash,
+                  p.backlash_held != 0.0 ? "held" : "floating");
   else if (c.name == "mullins")
     std::snprintf(b, sizeof b, "Mullins softening mu = %.4g", p.mullins);
   else if (c.name == "delay")
@@ -114,6 +148,14 @@ std::string describe_effect(const Candidate &c, const ExtModel &m) {
                   p.sat_force, p.sat_disp, p.sat_disp > 0 ? p.sat_force / p.sat_disp : 0.0);
   else if (c.name == "offset")
     std::snprintf(b, sizeof b, "force offset of %.4g", m.offset);
+  else if (c.name == "slack")
+    std::snprintf(b, sizeof b, "slack: the specimen cannot push (floats free at zero force)");
+  else if (c.name == "relaxation_spectrum")
+    std::snprintf(b, sizeof b, "relaxation spectrum k = %.4g, exponent %.3g over %.3g..%.3g s",
+                  p.spec_k, p.spec_exp, p.spec_tau_min, p.spec_tau_max);
+  else if (c.name == "friction_asymmetry")
+    std::snprintf(b, sizeof b, "friction asymmetry a = %.3g (dashpot level x%.3g for + motion, x%.3g for -)",
+                  p.fric_asym, 1 + p.fric_asym, 1 - p.fric_asym);
   else
     std::snprintf(b, sizeof b, "%s", c.name.c_str());
   return b;

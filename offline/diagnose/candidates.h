@@ -22,14 +22,25 @@ struct Candidate {
   bool physical = true;       // false: measurement-chain artefact (not in rt_bushing)
   std::vector<ParamId> extra; // extension parameters it frees
   bool delay = false, offset = false;
+  std::string variant;        // a second definition of the same word ("held")
+  // Model settings the effect needs (flags, branch time range), or nullptr.
+  void (*configure)(rtb_params &p, const DataScales &s) = nullptr;
 };
 
-// cubic_stiffness, asymmetry, maxwell, viscous, backlash, mullins, delay,
-// inertia, offset ("none" is the absence of all of them).
+// cubic_stiffness, asymmetry, maxwell, viscous, backlash (floating and held
+// end), mullins, delay, inertia, offset, softening, slack,
+// relaxation_spectrum, friction_asymmetry ("none" is the absence of all of
+// them, "unexplained" a residual above the noise floor none of them removes).
 const std::vector<Candidate> &candidate_vocabulary();
 
-// Fit specification of the joint fit: free = core + extra.
+// Two candidates that cannot be in one model (slack floats free; a held
+// clearance holds), or are the same word.
+bool candidates_conflict(const Candidate &a, const Candidate &b);
+
+// Fit specification of the joint fit: free = core + the extras of every
+// candidate in `cs` (a model with several causes).
 ExtFitSpec candidate_spec(const Candidate &c, const DataScales &s);
+ExtFitSpec combined_spec(const std::vector<Candidate> &cs, const DataScales &s);
 
 // One line describing the fitted effect, e.g. "backlash of 0.0312".
 std::string describe_effect(const Candidate &c, const ExtModel &m);

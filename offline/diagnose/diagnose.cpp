@@ -1,27 +1,73 @@
-// diagnose.cpp -- see diagnose.h.
+// diagnose.cpp -- the diagnosis pipeline (see diagnose.h for the stages).
 #include "diagnose/diagnose.h"
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <iterator>
-#include <thread>
 
+#include "diagnose/plausibility.h"
 #include "identify/sts_init.h"
 #include "model/parallel_for.h"
 
 namespace rtb {
 
+ResidualSignature residual_signature(const ExtModel &m, const std::vector<Record> &recs,
+                                     const std::vector<RecordResiduals> &where,
+                                     const MisfitOptions &opt);
+
 namespace {
 
-// Index of the parameter that measures the size of the effect.
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point a) {
+  return std::chrono::duration<double>(Clock::now() - a).count();
+}
+
+std::vector<Record> concat(const std::vector<Record> &a, const std::vector<Record> &b) {
+  std::vector<Record> all = a;
+  all.insert(all.end(), b.begin(), b.end());
+  return all;
+}
+
+// The model the next round starts from: its parameters, free set, causes and
+// figures (trimmed held-out error for selection, misfit for the BIC).
+struct Current {
+  ExtModel model;
+  ExtFitSpec spec;
+  std::vector<Candidate> causes;
+  double error_fit = 0, error_holdout = 0, error_holdout_trimmed = 0;
+  double J_trim = 0;  // trimmed fit misfit
+};
+
+struct Context {
+  const std::vector<Record> &fit, &holdout, all;
+  const std::vector<Record> &sel;  // records of the selection figure
+  MisfitOptions sel_opt;
+  const DiagnoseOptions &opt;
+  DataScales sc;
+  std::vector<double> sigma;  // noise level per record of `all`
+};
+
+Current make_current(const ExtModel &m, const ExtFitSpec &spec, const std::vector<Candidate> &causes,
+                     const Context &cx) {
+  Current c;
+  c.model = m;
+  c.spec = spec;
+  c.causes = causes;
+  c.error_fit = extended_error(m, cx.fit, cx.opt.misfit);
+  extended_error(m, cx.fit, cx.opt.misfit, &c.J_trim, nullptr, cx.opt.trim);
+  c.error_holdout = extended_error(m, cx.sel, cx.sel_opt);
+  c.error_holdout_trimmed = extended_error(m, cx.sel, cx.sel_opt, nullptr, nullptr, cx.opt.trim);
+  return c;
+}
+
+// Size of the effect: its first parameter, or the delay / offset.
 double amplitude_z(const Candidate &c, const ExtFitResult &f) {
   std::string amp;
   if (!c.extra.empty()) amp = param_name(c.extra[0]);
   else if (c.delay) amp = "delay";
   else if (c.offset) amp = "offset";
+  else return INFINITY;  // a switch (slack): judged by BIC and gain alone
   for (size_t i = 0; i < f.names.size(); ++i)
     if (f.names[i] == amp) {
       if (!f.stddev_valid) return 0.0;
@@ -31,174 +77,129 @@ double amplitude_z(const Candidate &c, const ExtFitResult &f) {
   return 0.0;
 }
 
-// Weighted baseline residuals and the weighted sensitivity columns of the
-// candidate's first (amplitude) parameter, stacked over the fit records.
-struct Columns {
-  Eigen::VectorXd r;
-  Eigen::MatrixXd g;
-};
-Columns screen_columns(const ExtModel &m, const std::vector<Record> &recs, const MisfitOptions &opt,
-                       const ExtFitSpec &spec) {
-  std::vector<double> rv;
-  std::vector<Eigen::RowVectorXd> rows;
-  for (const Record &rec : recs) {
-    Eigen::VectorXd F;
-    Eigen::MatrixXd J;
-    predict_extended(m, rec, opt.sim, spec, F, &J);
-    const std::vector<double> w = quadrature_weights(rec, opt.fit_from);
-    for (size_t j = 0; j < rec.F.size(); ++j) {
-      if (!(w[j] > 0.0)) continue;
-      const double q = std::sqrt(w[j]);
-      rv.push_back(q * (F[(Eigen::Index)j] - rec.F[j]));
-      rows.push_back(q * J.row((Eigen::Index)j));
+// Stage 4: joint fits of the best-screened candidates (in parallel).
+void joint_fits(std::vector<CandidateOutcome> &out, const Current &cur, const Context &cx,
+                int how_many) {
+  std::vector<size_t> order;
+  for (size_t i = 0; i < out.size(); ++i)
+    if (out[i].screen.z >= cx.opt.min_z) order.push_back(i);
+  std::sort(order.begin(), order.end(),
+            [&](size_t p, size_t q) { return out[p].screen.dJ > out[q].screen.dJ; });
+  if ((int)order.size() > how_many) order.resize((size_t)how_many);
+  parallel_for(order.size(), cx.opt.threads, [&](size_t k) {
+    CandidateOutcome &co = out[order[k]];
+    const auto t1 = Clock::now();
+    std::vector<Candidate> with = cur.causes;
+    with.push_back(co.cand);
+    try {
+      co.fit = fit_extended(cx.fit, co.screen.start, combined_spec(with, cx.sc), cx.opt.misfit);
+      co.joint = std::isfinite(co.fit.J);
+      if (!co.joint) co.why = "joint fit failed: non-finite misfit";
+    } catch (const std::exception &e) {
+      co.joint = false;
+      co.why = std::string("joint fit failed: ") + e.what();
     }
+    co.fit_seconds = since(t1);
+  });
+}
+
+// Stage 5a: the criteria of one candidate against the current model.
+void judge(CandidateOutcome &co, const Current &cur, const Context &cx, double min_gain) {
+  const DiagnoseOptions &opt = cx.opt;
+  if (!co.joint) {
+    co.error_holdout = NAN;
+    co.fit.error = NAN;
+    if (co.why.empty())
+      co.why = co.screen.z < opt.min_z ? "screened out: effect not significant"
+                                        : "screened out: smaller misfit reduction than others";
+    return;
   }
-  Columns c;
-  c.r = Eigen::Map<Eigen::VectorXd>(rv.data(), (Eigen::Index)rv.size());
-  c.g.resize(c.r.size(), rows.empty() ? 0 : rows[0].size());
-  for (size_t k = 0; k < rows.size(); ++k) c.g.row((Eigen::Index)k) = rows[k];
+  const double k = (double)(co.cand.extra.size() + co.cand.delay + co.cand.offset +
+                            (co.cand.extra.empty() && !co.cand.delay && !co.cand.offset));
+  const double ms = (double)co.fit.samples;
+  // On trimmed misfits, like the selection figure: isolated spikes (e.g. at
+  // ideal input corners) must not decide in either direction.
+  double Jc_trim = 0;
+  extended_error(co.fit.model, cx.fit, opt.misfit, &Jc_trim, nullptr, opt.trim);
+  co.dbic = ms * std::log(cur.J_trim / Jc_trim) - k * std::log(ms);
+  co.error_holdout = extended_error(co.fit.model, cx.sel, cx.sel_opt);
+  co.error_holdout_trimmed = extended_error(co.fit.model, cx.sel, cx.sel_opt, nullptr, nullptr, opt.trim);
+  co.gain = 1.0 - co.error_holdout_trimmed / cur.error_holdout_trimmed;
+  co.amplitude_z = amplitude_z(co.cand, co.fit);
+  // A Maxwell branch whose relaxation time is below the sample interval acts
+  // as a linear dashpot c = k tau: the data cannot tell it from `viscous`.
+  const bool unresolved_tau =
+      co.cand.name == "maxwell" && co.fit.model.p.maxwell_tau < 2.0 * cx.sc.dt;
+  if (co.amplitude_z < opt.min_z) co.why = "effect not significant (z < min_z)";
+  else if (unresolved_tau) co.why = "relaxation time below 2 sample intervals: a viscous dashpot";
+  else if (co.dbic < opt.min_dbic) co.why = "fit gain explained by the extra parameters (delta BIC)";
+  else if (co.gain < min_gain) co.why = cx.holdout.empty() ? "fit gain below min_gain" : "held-out gain below min_gain";
+  else {
+    co.why = contradiction(co.cand, co.fit.model, cur.model, cx.all, cx.sigma, opt.misfit);
+    co.eligible = co.why.empty();
+  }
+}
+
+// Stages 3-5 at the current model: the outcomes of every remaining candidate.
+std::vector<CandidateOutcome> one_round(const Current &cur, const Context &cx, int round,
+                                        DiagnoseResult &R) {
+  std::vector<Candidate> cands;
+  for (const Candidate &c : candidate_vocabulary()) {
+    if (!cx.opt.only.empty() &&
+        std::find(cx.opt.only.begin(), cx.opt.only.end(), c.name) == cx.opt.only.end())
+      continue;
+    bool clash = false;
+    for (const Candidate &k : cur.causes) clash = clash || candidates_conflict(c, k);
+    if (!clash) cands.push_back(c);
+  }
+  std::vector<CandidateOutcome> out(cands.size());
+  const auto t_screen = Clock::now();
+  const std::vector<CandidateScreen> screens =
+      screen_candidates(cands, cur.model, cur.spec, cx.all, cx.opt.misfit, cx.sc, cx.opt.threads);
+  for (size_t i = 0; i < cands.size(); ++i) {
+    out[i].cand = cands[i];
+    out[i].round = round;
+    out[i].screen = screens[i];
+  }
+  R.seconds_screen += since(t_screen);
+  const auto t_joint = Clock::now();
+  joint_fits(out, cur, cx, round == 0 ? cx.opt.joint_fits : cx.opt.joint_fits_next);
+  R.seconds_joint += since(t_joint);
+  for (CandidateOutcome &co : out)
+    judge(co, cur, cx, round == 0 ? cx.opt.min_gain : cx.opt.min_gain_next);
+  return out;
+}
+
+// Basin check of the first round: a candidate whose own term is
+// insignificant but whose fit is much better found a better RT minimum.
+const CandidateOutcome *better_basin(const std::vector<CandidateOutcome> &out, double base_error,
+                                     double min_z) {
+  const CandidateOutcome *better = nullptr;
+  for (const CandidateOutcome &co : out)
+    if (co.joint && co.amplitude_z < min_z && co.fit.error < 0.9 * base_error &&
+        (!better || co.fit.error < better->fit.error))
+      better = &co;
+  return better;
+}
+
+Cause make_cause(const CandidateOutcome &co, const Current &before) {
+  Cause c;
+  c.cand = co.cand;
+  c.description = describe_effect(co.cand, co.fit.model);
+  std::vector<std::string> own;
+  for (ParamId id : co.cand.extra) own.push_back(param_name(id));
+  if (co.cand.delay) own.push_back("delay");
+  if (co.cand.offset) own.push_back("offset");
+  for (const std::string &n : own)
+    for (size_t i = 0; i < co.fit.names.size(); ++i)
+      if (co.fit.names[i] == n) {
+        c.names.push_back(n);
+        c.value.push_back(co.fit.value[(Eigen::Index)i]);
+        c.stddev.push_back(co.fit.stddev_valid ? co.fit.stddev[(Eigen::Index)i] : NAN);
+      }
+  c.error_holdout = co.error_holdout;
+  c.gain = 1.0 - co.error_holdout / before.error_holdout;
   return c;
-}
-
-// Score test at the baseline: the linearized least squares with the RT
-// sensitivities and the candidate's columns together, so that the part of
-// the effect the baseline fit has already absorbed (e.g. relaxation taken by
-// the RT cells) is re-optimized rather than counted against the candidate.
-// The candidate's amplitude is the last unknown.
-void joint_linear(const Columns &rt, const Eigen::MatrixXd &g, CandidateScreen &s,
-                  Eigen::VectorXd *rt_step = nullptr) {
-  const Eigen::Index m = rt.r.size(), P = rt.g.cols(), q = g.cols();
-  Eigen::MatrixXd A(m, P + q);
-  A << rt.g, g;
-  const Eigen::VectorXd cs = A.colwise().norm().transpose().cwiseMax(1e-300);
-  const Eigen::MatrixXd As = A * cs.cwiseInverse().asDiagonal();
-  const Eigen::MatrixXd N = As.transpose() * As;
-  const Eigen::LDLT<Eigen::MatrixXd> ldlt(N);
-  const Eigen::VectorXd th = -ldlt.solve(As.transpose() * rt.r);
-  const Eigen::VectorXd res = rt.r + As * th;
-  const double r2 = rt.r.squaredNorm();
-  s.dJ = r2 > 0 ? 1.0 - res.squaredNorm() / r2 : 0.0;
-  s.value = th[P] / cs[P];
-  const double s2 = res.squaredNorm() / std::max(1.0, double(m - P - q));
-  const Eigen::VectorXd e = Eigen::VectorXd::Unit(P + q, P);
-  const double var = s2 * e.dot(ldlt.solve(e)) / (cs[P] * cs[P]);
-  s.z = var > 0 ? std::fabs(s.value) / std::sqrt(var) : 0.0;
-  if (rt_step) *rt_step = th.head(P).cwiseQuotient(cs.head(P));
-}
-
-// Move the RT parameters by the linearized step that accompanies the
-// candidate's term (the baseline had bent them to absorb the effect), in
-// log coordinates and by at most +-50%.
-void apply_rt_step(const Eigen::VectorXd &d, rtb_params &p) {
-  const std::vector<ParamId> ids = core_params();
-  for (size_t i = 0; i < ids.size() && (Eigen::Index)i < d.size(); ++i) {
-    double &v = param_ref(p, ids[i]);
-    if (v <= 0.0) continue;
-    const double rel = std::max(-0.5, std::min(0.5, d[(Eigen::Index)i] / v));
-    v *= std::exp(rel);
-  }
-  // alpha stays inside the admissible range (a baseline at the floor
-  // RTB_ALPHA_MIN, friction-like, must not be stepped below it).
-  p.alpha = std::max(std::min(p.alpha, 0.95), 1.01 * RTB_ALPHA_MIN);
-}
-
-// Starting gaps of the backlash screen, as fractions of the stroke: a
-// clearance much wider than the first is a different basin (a friction
-// device with a 10%-of-stroke play, e.g.). Each start is its own screening
-// job, so the two short fits run in parallel.
-constexpr double kBacklashStarts[] = {0.02, 0.1};
-
-CandidateScreen screen_candidate(const Candidate &c, const ExtModel &base,
-                                 const std::vector<Record> &fit, const MisfitOptions &opt,
-                                 const DataScales &sc, const Columns &rt, int variant) {
-  CandidateScreen s;
-  s.start = base;
-  ExtFitSpec spec;
-  spec.free = c.extra;
-  spec.fit_delay = c.delay;
-  spec.fit_offset = c.offset;
-  if (c.name == "maxwell") {
-    // Linear in the branch stiffness at fixed tau: scan tau over the records'
-    // time scales, keep the best.
-    spec.free = {P_maxwell_k};
-    for (double tau : {0.003, 0.01, 0.03, 0.1, 0.3, 1.0}) {
-      ExtModel m = base;
-      m.p.maxwell_tau = std::max(tau * sc.duration, 5.0 * sc.dt);
-      CandidateScreen t;
-      joint_linear(rt, screen_columns(m, fit, opt, spec).g, t);
-      if (t.value > 0.0 && t.dJ > s.dJ) {
-        s = t;
-        s.start = m;
-      }
-    }
-    if (s.dJ == 0.0) {  // no positive stiffness helps at any tau: report the best anyway
-      ExtModel m = base;
-      m.p.maxwell_tau = extra_start_value(P_maxwell_tau, sc);
-      joint_linear(rt, screen_columns(m, fit, opt, spec).g, s);
-      s.start = m;
-    }
-    s.plausible = s.value > 0.0;
-    s.start.p.maxwell_k = s.plausible ? s.value : extra_start_value(P_maxwell_k, sc);
-    return s;
-  }
-  if (c.name == "softening") {
-    // Linear in the saturation force at fixed width: scan the width over
-    // the stroke, keep the best positive force.
-    spec.free = {P_sat_force};
-    for (double xs : {0.03, 0.1, 0.3, 1.0}) {
-      ExtModel m = base;
-      m.p.sat_disp = xs * sc.Xmax;
-      CandidateScreen t;
-      Eigen::VectorXd step;
-      joint_linear(rt, screen_columns(m, fit, opt, spec).g, t, &step);
-      if (t.value > 0.0 && t.dJ > s.dJ) {
-        s = t;
-        s.start = m;
-        apply_rt_step(step, s.start.p);
-      }
-    }
-    s.plausible = s.value > 0.0;
-    if (s.start.p.sat_disp == 0.0) s.start.p.sat_disp = extra_start_value(P_sat_disp, sc);
-    s.start.p.sat_force = s.plausible ? s.value : extra_start_value(P_sat_force, sc);
-    return s;
-  }
-  if (c.name == "backlash") {
-    // Not differentiable at g = 0: a short joint fit (RT + g) from a gap;
-    // with RT held the baseline's compensation would hide the gap.
-    ExtFitSpec one = candidate_spec(c, sc);
-    one.max_iter = 6;
-    ExtModel m = base;
-    m.p.backlash = kBacklashStarts[variant] * sc.Xmax;
-    const ExtFitResult f = fit_extended(fit, m, one, opt);
-    const double r2 = rt.r.squaredNorm();
-    s.value = f.model.p.backlash;
-    s.dJ = r2 > 0 ? std::max(0.0, 1.0 - f.J / (0.5 * r2)) : 0.0;
-    const Eigen::Index gi = (Eigen::Index)one.free.size() - 1;
-    s.z = f.stddev_valid && f.stddev[gi] > 0 ? s.value / f.stddev[gi] : 0.0;
-    s.start = f.model;
-    return s;
-  }
-  Eigen::VectorXd rt_step;
-  joint_linear(rt, screen_columns(base, fit, opt, spec).g, s, &rt_step);
-  apply_rt_step(rt_step, s.start.p);
-  if (!c.extra.empty()) {
-    const ParamId id = c.extra[0];
-    const bool positive = id == P_viscous_c || id == P_mass || id == P_mullins;
-    s.plausible = !positive || s.value > 0.0;
-    double v = s.value;
-    // A wrong-signed screen (the baseline absorbed part of the effect) still
-    // gets a joint fit if it ranks high, from a default positive size.
-    if (id == P_mullins && v > 0.0) v = std::min(v, 0.9);
-    if (id == P_k_asym) v = std::max(-0.9 * s.start.p.K0, std::min(0.9 * s.start.p.K0, v));
-    if (positive && !(v > 0.0)) v = extra_start_value(id, sc);
-    param_ref(s.start.p, id) = v;
-  }
-  if (c.delay) {
-    s.plausible = s.value > 0.0;  // the force channel lags, by definition
-    s.start.delay = s.value > 0.0 ? s.value : 2.0 * sc.dt;
-  }
-  if (c.offset) s.start.offset = s.value;
-  return s;
 }
 
 char pct_buf[64];
@@ -207,15 +208,79 @@ const char *pct(double e) {
   return pct_buf;
 }
 
+std::string verdict_text(const DiagnoseResult &R, const DiagnoseOptions &opt) {
+  std::string v = "cause: ";
+  if (R.causes.empty() && R.cause == "unexplained") {
+    char b[200];
+    std::snprintf(b, sizeof b, "unexplained (residual %.1fx the noise floor of %s; no candidate removes it): ",
+                  R.baseline_error_holdout / std::max(R.floor.error_holdout, 1e-300),
+                  pct(R.floor.error_holdout));
+    v += b + R.signature.text;
+  } else if (R.causes.empty()) {
+    v += "none (the residual is at the noise floor of " + std::string(pct(R.floor.error_holdout)) + ")";
+  } else {
+    for (size_t i = 0; i < R.causes.size(); ++i) v += (i ? " + " : "") + R.causes[i].description;
+  }
+  v += std::string("; ") + (R.has_holdout ? "holdout" : "fit") + " error " +
+       pct(R.baseline_error_holdout);
+  v += std::string(" -> ") + pct(R.extended_error_holdout);
+  char g[200];
+  std::snprintf(g, sizeof g, " (gain %.0f%%)", 100.0 * R.gain);
+  v += g;
+  if (!R.causes.empty() && R.residual_above_floor) {
+    std::snprintf(g, sizeof g, "; the remaining residual is %.1fx the noise floor: ",
+                  R.extended_error_holdout / std::max(R.floor.error_holdout, 1e-300));
+    v += g + R.signature.text;
+  }
+  (void)opt;
+  return v;
+}
+
 }  // namespace
 
-DiagnoseResult diagnose(const std::vector<Record> &fit, const std::vector<Record> &holdout,
+std::vector<RecordFigures> record_figures(const ExtModel &m, const std::vector<Record> &fit,
+                                          const std::vector<Record> &holdout,
+                                          const MisfitOptions &opt) {
+  std::vector<RecordFigures> out;
+  ExtFitSpec none;
+  none.free.clear();
+  MisfitOptions all = opt;
+  all.fit_from = 0.0;
+  for (const std::vector<Record> *set : {&fit, &holdout})
+    for (const Record &rec : *set) {
+      RecordFigures f;
+      f.file = rec.path;
+      f.holdout = set == &holdout;
+      f.error = extended_error(m, {rec}, f.holdout ? all : opt);
+      Eigen::VectorXd F;
+      predict_extended(m, rec, opt.sim, none, F, nullptr);
+      double ss = 0.0, lo = INFINITY, hi = -INFINITY;
+      for (size_t i = 0; i < rec.F.size(); ++i) {
+        const double r = F[(Eigen::Index)i] - rec.F[i];
+        ss += r * r;
+        lo = std::min(lo, rec.F[i]);
+        hi = std::max(hi, rec.F[i]);
+      }
+      f.nrmse = hi > lo ? std::sqrt(ss / (double)rec.F.size()) / (hi - lo) : INFINITY;
+      out.push_back(f);
+    }
+  return out;
+}
+
+DiagnoseResult diagnose(const std::vector<Record> &fit_in, const std::vector<Record> &holdout_in,
                         const DiagnoseOptions &opt) {
-  const auto t0 = std::chrono::steady_clock::now();
+  const auto t0 = Clock::now();
   DiagnoseResult R;
+  // 0. The model input: one decision for all records.
+  std::vector<Record> both = concat(fit_in, holdout_in);
+  R.denoise = denoise_displacement(both);
+  const std::vector<Record> fit(both.begin(), both.begin() + (long)fit_in.size());
+  const std::vector<Record> holdout(both.begin() + (long)fit_in.size(), both.end());
   R.has_holdout = !holdout.empty();
   MisfitOptions hold_opt = opt.misfit;
   hold_opt.fit_from = 0.0;
+  Context cx{fit, holdout, concat(fit, holdout), R.has_holdout ? holdout : fit,
+             R.has_holdout ? hold_opt : opt.misfit, opt, data_scales(fit), {}};
 
   // 1. Baseline: plain RT from the STS start.
   const rtb_params start = sts_initial_guess(fit, opt.cells, opt.alpha0, opt.misfit.fit_from);
@@ -223,189 +288,79 @@ DiagnoseResult diagnose(const std::vector<Record> &fit, const std::vector<Record
   io.misfit = opt.misfit;
   io.quiet = opt.quiet;
   io.max_iter = opt.baseline_max_iter;
-  auto since = [](std::chrono::steady_clock::time_point a) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - a).count();
-  };
   R.baseline_fit = identify(fit, start, io);
   R.seconds_baseline = since(t0);
-  // A second round starts here when a candidate's joint fit shows that the
-  // baseline sat in a poor basin (see the end of step 4).
-  for (int round = 0;; ++round) {
-    R.candidates.clear();
-    R.chosen = -1;
+  const ExtFitSpec core;  // free = the five RT parameters
+  Current cur;
+  std::vector<CandidateOutcome> first;
+  for (int attempt = 0;; ++attempt) {
+    R.baseline = ExtModel();
     R.baseline.p = R.baseline_fit.params;
-    double Jb = 0, J0b = 0, Jb_trim = 0;
-    R.baseline_error_fit = extended_error(R.baseline, fit, opt.misfit, &Jb, &J0b);
-    extended_error(R.baseline, fit, opt.misfit, &Jb_trim, nullptr, opt.trim);
-    const std::vector<Record> &sel = R.has_holdout ? holdout : fit;
-    const MisfitOptions &sel_opt = R.has_holdout ? hold_opt : opt.misfit;
-    R.baseline_error_holdout = extended_error(R.baseline, sel, sel_opt);
-    R.baseline_error_holdout_trimmed = extended_error(R.baseline, sel, sel_opt, nullptr, nullptr, opt.trim);
-    if (!opt.quiet)
-      std::fprintf(stderr, "diagnose: baseline RT error fit %.3f%%, holdout %.3f%%\n",
-                   100 * R.baseline_error_fit, 100 * R.baseline_error_holdout);
-
-    // 2. Residuals of the baseline.
-    R.residuals = analyze_residuals(R.baseline, fit, holdout, opt.misfit);
-
-    // 3a. Screening at the baseline.
-    const DataScales sc = data_scales(fit);
-    std::vector<Candidate> cands;
-    for (const Candidate &c : candidate_vocabulary())
-      if (opt.only.empty() || std::find(opt.only.begin(), opt.only.end(), c.name) != opt.only.end())
-        cands.push_back(c);
-    std::vector<CandidateOutcome> out(cands.size());
-    // Screening jobs (candidate, variant), the long backlash fits first.
-    std::vector<std::pair<size_t, int>> jobs;
-    for (size_t i = 0; i < cands.size(); ++i) {
-      out[i].cand = cands[i];
-      if (cands[i].name == "backlash")
-        for (int v = 0; v < (int)std::size(kBacklashStarts); ++v) jobs.insert(jobs.begin(), {i, v});
-      else
-        jobs.push_back({i, 0});
-    }
-    const auto t_screen = std::chrono::steady_clock::now();
-    ExtFitSpec core;
-    const Columns rt = screen_columns(R.baseline, fit, opt.misfit, core);
-    std::vector<CandidateScreen> screens(jobs.size());
-    parallel_for(jobs.size(), opt.threads, [&](size_t k) {
-      const auto t1 = std::chrono::steady_clock::now();
-      screens[k] = screen_candidate(cands[jobs[k].first], R.baseline, fit, opt.misfit, sc, rt,
-                                    jobs[k].second);
-      screens[k].seconds = since(t1);
-    });
-    // A candidate's screen is its best variant (largest misfit reduction).
-    std::vector<bool> have(cands.size(), false);
-    for (size_t k = 0; k < jobs.size(); ++k) {
-      CandidateScreen &s = out[jobs[k].first].screen;
-      const double spent = s.seconds + screens[k].seconds;
-      if (!have[jobs[k].first] || screens[k].dJ > s.dJ) s = screens[k];
-      s.seconds = spent;
-      have[jobs[k].first] = true;
-    }
-    R.seconds_screen += since(t_screen);
-    // 3b. Joint fits of the most promising candidates.
-    std::vector<size_t> order;
-    for (size_t i = 0; i < out.size(); ++i)
-      if (out[i].screen.z >= opt.min_z) order.push_back(i);
-    std::sort(order.begin(), order.end(),
-              [&](size_t p, size_t q) { return out[p].screen.dJ > out[q].screen.dJ; });
-    if ((int)order.size() > opt.joint_fits) order.resize((size_t)opt.joint_fits);
-    const auto t_joint = std::chrono::steady_clock::now();
-    parallel_for(order.size(), opt.threads, [&](size_t k) {
-      CandidateOutcome &co = out[order[k]];
-      const auto t1 = std::chrono::steady_clock::now();
-      try {
-        co.fit = fit_extended(fit, co.screen.start, candidate_spec(co.cand, sc), opt.misfit);
-        co.joint = std::isfinite(co.fit.J);
-        if (!co.joint) co.why = "joint fit failed: non-finite misfit";
-      } catch (const std::exception &e) {
-        co.joint = false;
-        co.why = std::string("joint fit failed: ") + e.what();
-      }
-      co.fit_seconds = since(t1);
-    });
-    R.seconds_joint += since(t_joint);
-
-    // 4. Criteria and choice.
-    for (CandidateOutcome &co : out) {
-      if (!co.joint) {
-        co.error_holdout = NAN;
-        co.fit.error = NAN;
-        if (co.why.empty())
-          co.why = co.screen.z < opt.min_z ? "screened out: effect not significant"
-                                            : "screened out: smaller misfit reduction than others";
-        R.candidates.push_back(co);
-        continue;
-      }
-      const double k = (double)(co.cand.extra.size() + co.cand.delay + co.cand.offset);
-      const double ms = (double)co.fit.samples;
-      // On trimmed misfits, like the selection figure: isolated spikes (e.g. at
-      // ideal input corners) must not decide in either direction.
-      double Jc_trim = 0;
-      extended_error(co.fit.model, fit, opt.misfit, &Jc_trim, nullptr, opt.trim);
-      co.dbic = ms * std::log(Jb_trim / Jc_trim) - k * std::log(ms);
-      co.error_holdout = extended_error(co.fit.model, sel, sel_opt);
-      co.error_holdout_trimmed = extended_error(co.fit.model, sel, sel_opt, nullptr, nullptr, opt.trim);
-      co.gain = 1.0 - co.error_holdout_trimmed / R.baseline_error_holdout_trimmed;
-      co.amplitude_z = amplitude_z(co.cand, co.fit);
-      // A Maxwell branch whose relaxation time is below the sample interval
-    // acts as a linear dashpot c = k tau: the data cannot tell it from
-    // `viscous`, so it may not claim a relaxation time.
-    const bool unresolved_tau = co.cand.name == "maxwell" && co.fit.model.p.maxwell_tau < 2.0 * sc.dt;
-    if (co.amplitude_z < opt.min_z) co.why = "effect not significant (z < min_z)";
-    else if (unresolved_tau) co.why = "relaxation time below 2 sample intervals: a viscous dashpot";
-      else if (co.dbic < opt.min_dbic) co.why = "fit gain explained by the extra parameters (delta BIC)";
-      else if (co.gain < opt.min_gain) co.why = R.has_holdout ? "held-out gain below min_gain" : "fit gain below min_gain";
-      else co.eligible = true;
-      R.candidates.push_back(co);
-    }
-
-    // Basin check: the plain RT model is nested in every candidate. If a
-    // candidate fits much better while its own term is insignificant, its RT
-    // part found a better minimum than the baseline (seen on friction-damper
-    // data): refit the baseline from there and screen again, once.
-    const CandidateOutcome *better = nullptr;
-    for (const CandidateOutcome &co : R.candidates)
-      if (co.joint && co.amplitude_z < opt.min_z && co.fit.error < 0.9 * R.baseline_error_fit &&
-          (!better || co.fit.error < better->fit.error))
-        better = &co;
-    if (round > 0 || !better) break;
+    cur = make_current(R.baseline, core, {}, cx);
+    // 2. Noise floor of the baseline residual.
+    R.floor = estimate_noise_floor(R.baseline, fit, holdout, opt.misfit);
+    cx.sigma = R.floor.sigma_fit;
+    cx.sigma.insert(cx.sigma.end(), R.floor.sigma_holdout.begin(), R.floor.sigma_holdout.end());
+    // 3-5. First round.
+    first = one_round(cur, cx, 0, R);
+    const CandidateOutcome *better = better_basin(first, cur.error_fit, opt.min_z);
+    if (attempt > 0 || !better) break;
     rtb_params restart = R.baseline_fit.params;
     for (ParamId id : core_params()) param_ref(restart, id) = param_get(better->fit.model.p, id);
     if (!opt.quiet)
       std::fprintf(stderr, "diagnose: the %s fit found a better RT basin (%.3f%% < %.3f%%): refitting "
                    "the baseline from it\n", better->cand.name.c_str(), 100 * better->fit.error,
-                   100 * R.baseline_error_fit);
-    const auto t_again = std::chrono::steady_clock::now();
+                   100 * cur.error_fit);
+    const auto t_again = Clock::now();
     IdentifyResult again = identify(fit, restart, io);
     R.seconds_baseline += since(t_again);
     if (!(again.J < R.baseline_fit.J)) break;
     R.baseline_fit = again;
-  }  // rounds
-  for (size_t i = 0; i < R.candidates.size(); ++i)
-    if (R.candidates[i].eligible &&
-        (R.chosen < 0 || R.candidates[i].error_holdout_trimmed <
-                             R.candidates[(size_t)R.chosen].error_holdout_trimmed))
-      R.chosen = (int)i;
+  }
+  R.baseline_error_fit = cur.error_fit;
+  R.baseline_error_holdout = cur.error_holdout;
+  R.baseline_error_holdout_trimmed = cur.error_holdout_trimmed;
+  R.residuals = analyze_residuals(R.baseline, fit, holdout, opt.misfit);
+  if (!opt.quiet)
+    std::fprintf(stderr, "diagnose: baseline RT error fit %.3f%%, holdout %.3f%%, noise floor %.3f%%\n",
+                 100 * R.baseline_error_fit, 100 * R.baseline_error_holdout,
+                 100 * R.floor.error_holdout);
 
-  // 5. Extended model and gain.
-  if (R.chosen >= 0) {
-    const CandidateOutcome &c = R.candidates[(size_t)R.chosen];
-    R.cause = c.cand.name;
-    R.extended = c.fit.model;
-    R.extended_error_fit = c.fit.error;
-    R.extended_error_holdout = c.error_holdout;
-  } else {
-    R.extended = R.baseline;
-    R.extended_error_fit = R.baseline_error_fit;
-    R.extended_error_holdout = R.baseline_error_holdout;
+  // 5b-6. Accept the best eligible candidate, then look for the next cause at
+  // the extended model while the residual is above the floor.
+  R.extended_spec = core;
+  std::vector<CandidateOutcome> round_out = first;
+  const auto above_floor = [&](const Current &c) {
+    return c.error_holdout > opt.floor_ratio * R.floor.error_holdout ||
+           c.error_fit > opt.floor_ratio * R.floor.error_fit;
+  };
+  for (int round = 0;; ++round) {
+    const CandidateOutcome *best = nullptr;
+    for (const CandidateOutcome &co : round_out)
+      if (co.eligible && (!best || co.error_holdout_trimmed < best->error_holdout_trimmed)) best = &co;
+    R.candidates.insert(R.candidates.end(), round_out.begin(), round_out.end());
+    if (!best) break;
+    R.causes.push_back(make_cause(*best, cur));
+    std::vector<Candidate> causes = cur.causes;
+    causes.push_back(best->cand);
+    R.extended_fit = best->fit;
+    cur = make_current(best->fit.model, combined_spec(causes, cx.sc), causes, cx);
+    if (round + 1 >= opt.max_causes || !above_floor(cur)) break;
+    round_out = one_round(cur, cx, round + 1, R);
   }
+  R.extended = cur.model;
+  R.extended_spec = cur.spec;
+  R.extended_error_fit = cur.error_fit;
+  R.extended_error_holdout = cur.error_holdout;
+  R.extended_records = record_figures(R.extended, fit, holdout, opt.misfit);
+  R.residual_above_floor = above_floor(cur);
+  if (R.residual_above_floor)
+    R.signature = residual_signature(R.extended, cx.all, R.residuals, opt.misfit);
+  R.cause = !R.causes.empty() ? R.causes.front().cand.name
+                              : (R.residual_above_floor ? "unexplained" : "none");
   R.gain = 1.0 - R.extended_error_holdout / R.baseline_error_holdout;
-  std::string v = "cause: ";
-  v += R.chosen >= 0 ? describe_effect(R.candidates[(size_t)R.chosen].cand, R.extended)
-                     : std::string("none (no candidate explains the residual significantly)");
-  v += std::string("; ") + (R.has_holdout ? "holdout" : "fit") + " error " +
-       pct(R.baseline_error_holdout);
-  v += std::string(" -> ") + pct(R.extended_error_holdout);
-  char g[160];
-  std::snprintf(g, sizeof g, " (gain %.0f%%)", 100.0 * R.gain);
-  v += g;
-  if (R.chosen >= 0) {
-    // The selection figure: with isolated spikes trimmed it can differ a lot
-    // (e.g. an inertia term at ideal input corners); say so.
-    const CandidateOutcome &c = R.candidates[(size_t)R.chosen];
-    if (std::fabs(c.gain - R.gain) > 0.05) {
-      std::snprintf(g, sizeof g, "; with the largest %.1f%% of residuals trimmed %s -> ",
-                    100.0 * opt.trim, pct(R.baseline_error_holdout_trimmed));
-      v += g;
-      v += pct(c.error_holdout_trimmed);
-      std::snprintf(g, sizeof g, " (gain %.0f%%)", 100.0 * c.gain);
-      v += g;
-    }
-  }
-  R.verdict = v;
-  R.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  R.verdict = verdict_text(R, opt);
+  R.wall_seconds = since(t0);
   return R;
 }
 

@@ -1,25 +1,35 @@
 // diagnose.h -- find what the RT model gets wrong in measured data, name the
-// cause from a fixed vocabulary, fit the extended model and measure the gain.
+// cause(s) from a vocabulary, fit the extended model and measure the gain.
 //
-// 1. Fit plain RT on the fit records (STS start, trust region).
-// 2. Analyse the residuals on fit and holdout records.
-// 3. Screen every candidate of candidate_vocabulary() at the baseline: the
-//    best size of its effect with the RT parameters held, from the exact
-//    sensitivities (a linear least-squares step for effects linear in their
-//    parameter, a tau grid for Maxwell, a short fit for backlash); then fit
-//    the `joint_fits` most promising ones jointly with the RT parameters,
-//    warm-started from the screen.
-// 4. A candidate is eligible when (a) its amplitude parameter is significant
-//    (|value| >= min_z standard deviations), (b) the fit improves by more than
-//    the parameter count can explain (delta BIC >= min_dbic) and (c) the
-//    held-out error drops by at least min_gain (relative). (b) and (c) use
-//    misfits with the largest `trim` fraction of squared residuals dropped,
-//    so isolated spikes decide nothing. The cause is the
-//    eligible candidate with the lowest held-out error, or "none". A Maxwell
-//    branch with tau below two sample intervals is a dashpot: not eligible.
+// The pipeline (diagnose.cpp), one stage per function or file:
+// 0. input        a noisy displacement is low-passed for the model input
+//                 (displacement_noise.h: robust velocity and acceleration).
+// 1. baseline     plain RT on the fit records (STS start, trust region).
+// 2. noise floor  the white-noise level of the residual, estimated from the
+//                 data (noise_floor.h): how small the residual can get.
+// 3. screen       every candidate at the current model, on ALL records (an
+//                 effect may show mainly in the held-out kind: inertia at high
+//                 frequency), from the exact sensitivities (screen.h).
+// 4. joint fits   the most promising candidates fitted jointly with the
+//                 current model's parameters on the fit records.
+// 5. selection    a candidate is eligible when its amplitude is significant
+//                 (z >= min_z), the fit improves by more than its parameter
+//                 count explains (delta BIC >= min_dbic), the held-out error
+//                 drops by min_gain (relative, trimmed of isolated spikes),
+//                 and the data do not contradict it (plausibility.h: an offset
+//                 must agree with at-rest segments, a delay with the
+//                 cross-correlation, slack with zero-force segments). The
+//                 lowest held-out error among the eligible is accepted as the
+//                 next cause; stages 3-5 repeat at the extended model while a
+//                 further cause still pays on held-out data and the residual
+//                 is above the noise floor (several causes).
+// 6. report       causes, or `none` when the baseline is at the noise floor,
+//                 or `unexplained` with the residual's signature (band, trend,
+//                 where in the cycle) when it is above the floor and no
+//                 candidate removes it: a wrong physical name is worse.
 // Basin check: plain RT is nested in every candidate. If an insignificant
 // candidate fits below 0.9x the baseline, the baseline is refitted from its
-// RT part and steps 1-4 run once more (seen on friction-damper data).
+// RT part and the first round runs once more.
 #ifndef RTB_OFFLINE_DIAGNOSE_H
 #define RTB_OFFLINE_DIAGNOSE_H
 
@@ -27,7 +37,10 @@
 #include <vector>
 
 #include "diagnose/candidates.h"
+#include "diagnose/displacement_noise.h"
+#include "diagnose/noise_floor.h"
 #include "diagnose/residual_analysis.h"
+#include "diagnose/screen.h"
 #include "identify/identify.h"
 
 namespace rtb {
@@ -36,15 +49,22 @@ struct DiagnoseOptions {
   int cells = RTB_DEFAULT_CELLS;
   double alpha0 = 0.2;
   MisfitOptions misfit;
-  double min_gain = 0.15;   // relative held-out error reduction
+  double min_gain = 0.15;   // relative held-out error reduction of the first cause
+  double min_gain_next = 0.10;  // ... of each further cause
   double min_dbic = 10.0;
   double min_z = 3.0;
   double trim = 0.005;      // fraction of largest held-out residuals ignored when selecting
+  // The residual is "at the noise floor" below this multiple of the floor's
+  // eq. (27) error (noise_floor.h); above it, no candidate means `unexplained`.
+  double floor_ratio = 1.3;
+  int max_causes = 3;
   int threads = 2;
-  // Candidates fitted jointly after screening. The screen underrates an
-  // effect the baseline has absorbed on the fit records (a small viscous
-  // term taken up by the cells: 5th of 10 by its linearized gain, seed 6).
+  // Candidates fitted jointly after screening: the first round, later rounds.
+  // The screen underrates an effect the baseline has absorbed on the fit
+  // records (a small viscous term taken up by the cells: 5th of 10 by its
+  // linearized gain, seed 6).
   int joint_fits = 5;
+  int joint_fits_next = 3;
   // Iteration budget of the baseline fit. Data with an effect the RT model
   // lacks can send it down a long valley towards a limit model (rigid cells
   // mimicking an inertia force: 1000 iterations, 170 s); the joint fits start
@@ -55,28 +75,49 @@ struct DiagnoseOptions {
   std::vector<std::string> only;  // restrict the candidates (empty = all)
 };
 
-struct CandidateScreen {
-  double value = 0.0;         // best effect size with RT held at the baseline
-  double z = 0.0;             // its significance
-  double dJ = 0.0;            // misfit reduction it brings (relative to baseline J)
-  bool plausible = true;      // sign admissible (e.g. damping >= 0)
-  ExtModel start;             // start point of the joint fit
-  double seconds = 0.0;       // wall time of the screen
-};
-
 struct CandidateOutcome {
   Candidate cand;
+  int round = 0;              // 0: screened at the baseline; k: with k causes found
   CandidateScreen screen;
   bool joint = false;         // fitted jointly (else screened out)
   ExtFitResult fit;
   double fit_seconds = 0.0;   // wall time of the joint fit
   double error_holdout = 0.0;
   double error_holdout_trimmed = 0.0;  // selection figure (see DiagnoseOptions::trim)
-  double dbic = 0.0;          // BIC(baseline) - BIC(candidate), trimmed fit misfits
-  double gain = 0.0;          // 1 - trimmed holdout error / baseline's (selection)
+  double dbic = 0.0;          // BIC(current) - BIC(candidate), trimmed fit misfits
+  double gain = 0.0;          // 1 - trimmed holdout error / current model's (selection)
   double amplitude_z = 0.0;   // |amplitude parameter| / its standard deviation
   bool eligible = false;
   std::string why;            // reason when not eligible
+};
+
+// One accepted cause, in the order found.
+struct Cause {
+  Candidate cand;
+  std::string description;    // e.g. "backlash of 0.0312 (floating end)"
+  std::vector<std::string> names;  // its fitted size(s) ...
+  std::vector<double> value, stddev;  // ... with uncertainty (stddev NaN if unknown)
+  double error_holdout = 0.0; // held-out eq. (27) error with this and the earlier causes
+  double gain = 0.0;          // 1 - error_holdout / the previous model's
+};
+
+// Per-record figures of a model.
+struct RecordFigures {
+  std::string file;
+  bool holdout = false;
+  double error = 0.0;         // eq. (27), a fraction
+  double nrmse = 0.0;         // rms(F_model - F_measured) / (max F - min F), a fraction
+};
+
+// What the residual looks like when no candidate explains it.
+struct ResidualSignature {
+  double dominant_hz = 0.0;      // frequency of the residual's largest spectral line
+  double dominant_share = 0.0;   // share of the residual's energy within +-10% of it
+  double input_share = 0.0;      // share of the displacement's energy there
+  double trend_share = 0.0;      // share explained by a + b t (slow drift of the force)
+  double drift_share = 0.0;      // share explained by t F_model (a stiffness drift)
+  std::string where;             // the loop quadrant or phase where it is largest
+  std::string text;              // one sentence
 };
 
 struct DiagnoseResult {
@@ -85,12 +126,19 @@ struct DiagnoseResult {
   double baseline_error_fit = 0.0, baseline_error_holdout = 0.0;
   double baseline_error_holdout_trimmed = 0.0;
   bool has_holdout = false;
+  DisplacementDenoise denoise; // stage 0's decision
+  NoiseFloor floor;            // of the baseline residual
   std::vector<RecordResiduals> residuals;
-  std::vector<CandidateOutcome> candidates;
-  int chosen = -1;            // index into candidates, -1 = none
-  std::string cause = "none";
-  ExtModel extended;          // = baseline when cause is none
+  std::vector<CandidateOutcome> candidates;  // every round's
+  std::vector<Cause> causes;
+  std::string cause = "none";  // causes[0]'s name, or "none" / "unexplained"
+  bool residual_above_floor = false;  // after the causes found
+  ResidualSignature signature;        // of the final residual (set when above the floor)
+  ExtModel extended;           // = baseline when there is no cause
+  ExtFitSpec extended_spec;    // its free parameters
+  ExtFitResult extended_fit;   // its fit (sizes and uncertainty)
   double extended_error_fit = 0.0, extended_error_holdout = 0.0;
+  std::vector<RecordFigures> extended_records;
   double gain = 0.0;
   std::string verdict;
   double wall_seconds = 0.0;
@@ -101,6 +149,11 @@ struct DiagnoseResult {
 
 DiagnoseResult diagnose(const std::vector<Record> &fit, const std::vector<Record> &holdout,
                         const DiagnoseOptions &opt);
+
+// eq. (27) error and NRMSE of model m on each record.
+std::vector<RecordFigures> record_figures(const ExtModel &m, const std::vector<Record> &fit,
+                                          const std::vector<Record> &holdout,
+                                          const MisfitOptions &opt);
 
 }  // namespace rtb
 

@@ -8,7 +8,7 @@ namespace rtb {
 namespace {
 enum class Kind { Log, CappedLog, Alpha, Linear, Ramp };
 bool is_stiffness(ParamId id) {
-  return id == P_K0 || id == P_Kpa || id == P_Kr || id == P_maxwell_k;
+  return id == P_K0 || id == P_Kpa || id == P_Kr || id == P_maxwell_k || id == P_spec_k;
 }
 Kind kind_of(ParamId id, double cap) {
   switch (id) {
@@ -17,16 +17,20 @@ Kind kind_of(ParamId id, double cap) {
     case P_viscous_c:
     case P_mass:
     case P_mullins:
-    case P_sat_force: return Kind::Ramp;
+    case P_sat_force:
+    case P_spec_k:
+    case P_fric_asym: return Kind::Ramp;
     case P_alpha: return Kind::Alpha;
     case P_k3:
-    case P_k_asym: return Kind::Linear;
+    case P_k_asym:
+    case P_spec_exp: return Kind::Linear;
     default: return cap > 0.0 && is_stiffness(id) ? Kind::CappedLog : Kind::Log;
   }
 }
-// Largest admissible value of a Ramp parameter.
+// Admissible box of a Ramp parameter (linear, zero-admissible).
+double ramp_lower(ParamId id) { return id == P_fric_asym ? -0.95 : 0.0; }  // |a| < 1
 double ramp_upper(ParamId id, double cap) {
-  if (id == P_mullins) return 0.95;  // rtb_params_validate: mu < 1
+  if (id == P_mullins || id == P_fric_asym) return 0.95;  // rtb_params_validate: < 1
   if (is_stiffness(id) && cap > 0.0) return cap;
   return INFINITY;
 }
@@ -58,7 +62,7 @@ ParamTransform::ParamTransform(std::vector<ParamId> free_ids, const rtb_params &
     // a few steps.
     if (kind_of(id, stiffness_cap) == Kind::Ramp && is_stiffness(id) && stiffness_cap > 0.0)
       scale[id] = std::fmax(scale[id], stiffness_cap / kStiffnessCapFactor);
-    if (id == P_mullins) scale[id] = 0.1;
+    if (id == P_mullins || id == P_fric_asym) scale[id] = 0.1;
   }
 }
 
@@ -81,7 +85,7 @@ Eigen::VectorXd ParamTransform::to_theta(const rtb_params &p) const {
       }
       case Kind::Linear: th[i] = v / scale[id]; break;
       case Kind::Ramp:
-        th[i] = std::fmin(std::fmax(v, 0.0), ramp_upper(id, stiffness_cap)) / scale[id];
+        th[i] = std::fmin(std::fmax(v, ramp_lower(id)), ramp_upper(id, stiffness_cap)) / scale[id];
         break;
     }
   }
@@ -101,7 +105,7 @@ rtb_params ParamTransform::to_params(const Eigen::VectorXd &th, const rtb_params
       case Kind::Alpha: v = kAlphaLo + (kAlphaHi - kAlphaLo) * logistic(th[i]); break;
       case Kind::Linear: v = th[i] * scale[id]; break;
       case Kind::Ramp:  // clamped, so that an unbounded optimizer (BFGS) stays valid
-        v = std::fmin(std::fmax(th[i] * scale[id], 0.0), ramp_upper(id, stiffness_cap));
+        v = std::fmin(std::fmax(th[i] * scale[id], ramp_lower(id)), ramp_upper(id, stiffness_cap));
         break;
     }
   }
@@ -131,7 +135,7 @@ Eigen::VectorXd ParamTransform::dp_dtheta(const Eigen::VectorXd &th) const {
       case Kind::Ramp: {
         // One-sided at the bounds: the box optimizer needs the inward slope.
         const double v = th[i] * scale[id];
-        d[i] = (v < 0.0 || v > ramp_upper(id, stiffness_cap)) ? 0.0 : scale[id];
+        d[i] = (v < ramp_lower(id) || v > ramp_upper(id, stiffness_cap)) ? 0.0 : scale[id];
         break;
       }
     }
@@ -142,7 +146,8 @@ Eigen::VectorXd ParamTransform::dp_dtheta(const Eigen::VectorXd &th) const {
 Eigen::VectorXd ParamTransform::lower() const {
   Eigen::VectorXd lo = Eigen::VectorXd::Constant((Eigen::Index)free.size(), -INFINITY);
   for (size_t i = 0; i < free.size(); ++i)
-    if (kind_of(free[i], stiffness_cap) == Kind::Ramp) lo[(Eigen::Index)i] = 0.0;
+    if (kind_of(free[i], stiffness_cap) == Kind::Ramp)
+      lo[(Eigen::Index)i] = ramp_lower(free[i]) / scale[free[i]];
   return lo;
 }
 

@@ -38,7 +38,8 @@ const char *const kKeywords[] = {
 const char *const kLibraryNames[] = {
     "rtb_params", "rtb_state", "rtb_settings", "rtb_status", "rtb_model", "rtb_integrator",
     "rtb_info", "rtb_real", "rtb_stage", "rtb_params_default", "rtb_params_validate",
-    "rtb_settings_default", "rtb_status_message", "rtb_state_init", "rtb_step", "rtb_evaluate",
+    "rtb_settings_default", "rtb_status_message", "rtb_params_check", "RTB_PARAM_FIELDS",
+    "RTB_MAX_BRANCHES", "rtb_state_init", "rtb_step", "rtb_evaluate",
     "rtb_commit", "rtb_cell_states", "rtb_get_info", "rtb_static_force", "RTB_ABI_VERSION",
     "RTB_MAX_CELLS", "RTB_DEFAULT_CELLS", "RTB_N_RESERVED", "RTB_SCALAR_BYTES", "RTB_ALPHA_MIN",
     "RTB_DT_MIN", "RTB_DT_MAX", "RTB_X_MAX", "RTB_OK", "RTB_NOT_CONVERGED", "RTB_ERR_NULL",
@@ -84,62 +85,32 @@ struct Field {
   const char *note;
 };
 
-// Order of struct rtb_params after the four int fields.
-const Field kRealFields[] = {
-    {"K0", &rtb_params::K0, "global elastic stiffness"},
-    {"Kpa", &rtb_params::Kpa, "low-amplitude stiffness"},
-    {"Kr", &rtb_params::Kr, "cell spring stiffness"},
-    {"C0", &rtb_params::C0, "RT dashpot coefficient"},
-    {"alpha", &rtb_params::alpha, "RT dashpot exponent"},
-    {"Ff", &rtb_params::Ff, "STS friction threshold"},
-    {"k3", &rtb_params::k3, "cubic spring"},
-    {"k_asym", &rtb_params::k_asym, "asymmetry"},
-    {"maxwell_k", &rtb_params::maxwell_k, "Maxwell branch stiffness"},
-    {"maxwell_tau", &rtb_params::maxwell_tau, "Maxwell relaxation time"},
-    {"viscous_c", &rtb_params::viscous_c, "parallel linear dashpot"},
-    {"mass", &rtb_params::mass, "inertia"},
-    {"backlash", &rtb_params::backlash, "clearance"},
-    {"mullins", &rtb_params::mullins, "Mullins softening fraction"},
-    {"smoothing", &rtb_params::smoothing, "eq. (14) smoothing s, 0 = off"},
-    {"sat_force", &rtb_params::sat_force, "softening spring force"},
-    {"sat_disp", &rtb_params::sat_disp, "softening spring displacement"},
-};
+// The real fields of struct rtb_params after its four int fields, in order
+// (rt_bushing.h, RTB_PARAM_FIELDS).
+#define RTB_HEADER_FIELD(name, rule, kind, unit, text) {#name, &rtb_params::name, text},
+const Field kRealFields[] = {RTB_PARAM_FIELDS(RTB_HEADER_FIELD)};
+#undef RTB_HEADER_FIELD
 
-// A compile-time check of the struct layout this file assumes: every field
-// offset follows from the declaration order checked here.
+// A compile-time check of the struct layout this file assumes: four leading
+// int fields, then the list's fields back to back, then `reserved`.
+#define RTB_HEADER_OFFSET(name, rule, kind, unit, text) offsetof(rtb_params, name),
+constexpr size_t kOffsets[] = {RTB_PARAM_FIELDS(RTB_HEADER_OFFSET) offsetof(rtb_params, reserved)};
+#undef RTB_HEADER_OFFSET
+constexpr bool fields_back_to_back() {
+  for (size_t i = 0; i + 1 < sizeof kOffsets / sizeof kOffsets[0]; ++i)
+    if (kOffsets[i + 1] != kOffsets[i] + sizeof(rtb_real)) return false;
+  return true;
+}
 static_assert(offsetof(rtb_params, abi_version) == 0 &&
                   offsetof(rtb_params, model) == sizeof(int) &&
                   offsetof(rtb_params, cells) == 2 * sizeof(int) &&
-                  offsetof(rtb_params, integrator) == 3 * sizeof(int),
+                  offsetof(rtb_params, integrator) == 3 * sizeof(int) &&
+                  kOffsets[0] == 4 * sizeof(int),
               "rtb_params: the header writer assumes four leading int fields");
-static_assert(offsetof(rtb_params, Kpa) == offsetof(rtb_params, K0) + sizeof(rtb_real) &&
-                  offsetof(rtb_params, Kr) == offsetof(rtb_params, Kpa) + sizeof(rtb_real) &&
-                  offsetof(rtb_params, C0) == offsetof(rtb_params, Kr) + sizeof(rtb_real) &&
-                  offsetof(rtb_params, alpha) == offsetof(rtb_params, C0) + sizeof(rtb_real) &&
-                  offsetof(rtb_params, Ff) == offsetof(rtb_params, alpha) + sizeof(rtb_real) &&
-                  offsetof(rtb_params, k3) == offsetof(rtb_params, Ff) + sizeof(rtb_real) &&
-                  offsetof(rtb_params, k_asym) == offsetof(rtb_params, k3) + sizeof(rtb_real) &&
-                  offsetof(rtb_params, maxwell_k) ==
-                      offsetof(rtb_params, k_asym) + sizeof(rtb_real) &&
-                  offsetof(rtb_params, maxwell_tau) ==
-                      offsetof(rtb_params, maxwell_k) + sizeof(rtb_real) &&
-                  offsetof(rtb_params, viscous_c) ==
-                      offsetof(rtb_params, maxwell_tau) + sizeof(rtb_real) &&
-                  offsetof(rtb_params, mass) == offsetof(rtb_params, viscous_c) + sizeof(rtb_real) &&
-                  offsetof(rtb_params, backlash) == offsetof(rtb_params, mass) + sizeof(rtb_real) &&
-                  offsetof(rtb_params, mullins) ==
-                      offsetof(rtb_params, backlash) + sizeof(rtb_real) &&
-                  offsetof(rtb_params, smoothing) ==
-                      offsetof(rtb_params, mullins) + sizeof(rtb_real) &&
-                  offsetof(rtb_params, sat_force) ==
-                      offsetof(rtb_params, smoothing) + sizeof(rtb_real) &&
-                  offsetof(rtb_params, sat_disp) ==
-                      offsetof(rtb_params, sat_force) + sizeof(rtb_real) &&
-                  offsetof(rtb_params, reserved) ==
-                      offsetof(rtb_params, sat_disp) + sizeof(rtb_real) &&
+static_assert(fields_back_to_back() &&
                   sizeof(rtb_params) ==
                       offsetof(rtb_params, reserved) + RTB_N_RESERVED * sizeof(rtb_real),
-              "rtb_params changed: update kRealFields and the emitter");
+              "rtb_params and RTB_PARAM_FIELDS disagree: update the list in rt_bushing.h");
 
 }  // namespace
 
@@ -170,9 +141,10 @@ std::string emit_parameter_header(const rtb_params &p, const HeaderInfo &info) {
   std::string why;
   if (!is_valid_header_name(info.name, &why))
     throw InputError("invalid header name \"" + comment_safe(info.name) + "\": " + why);
-  const rtb_status st = rtb_params_validate(&p);
+  const char *bad = "";
+  const rtb_status st = rtb_params_check(&p, &bad);
   if (st != RTB_OK)
-    throw InputError(std::string("cannot write a header for invalid parameters: ") +
+    throw InputError(std::string("cannot write a header for invalid parameters: ") + bad + ": " +
                      rtb_status_message(st));
 
   const std::string &N = info.name;

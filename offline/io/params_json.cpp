@@ -22,28 +22,27 @@ namespace {
 struct Key {
   const char *name;
   double rtb_params::*field;
-  enum Rule { positive, nonneg, any, alpha, fraction } rule;
+  const char *rule;  // what the library requires of it (RTB_PARAM_FIELDS rule)
 };
 
-// Every numeric key of "params", in output order.
-const Key kKeys[] = {
-    {"K0", &rtb_params::K0, Key::nonneg},
-    {"Kpa", &rtb_params::Kpa, Key::positive},
-    {"Kr", &rtb_params::Kr, Key::positive},
-    {"C0", &rtb_params::C0, Key::positive},
-    {"alpha", &rtb_params::alpha, Key::alpha},
-    {"Ff", &rtb_params::Ff, Key::positive},
-    {"k3", &rtb_params::k3, Key::any},
-    {"k_asym", &rtb_params::k_asym, Key::any},
-    {"maxwell_k", &rtb_params::maxwell_k, Key::nonneg},
-    {"maxwell_tau", &rtb_params::maxwell_tau, Key::nonneg},
-    {"viscous_c", &rtb_params::viscous_c, Key::nonneg},
-    {"mass", &rtb_params::mass, Key::nonneg},
-    {"backlash", &rtb_params::backlash, Key::nonneg},
-    {"mullins", &rtb_params::mullins, Key::fraction},
-    {"sat_force", &rtb_params::sat_force, Key::nonneg},
-    {"sat_disp", &rtb_params::sat_disp, Key::nonneg},
-};
+const char *rule_text(const char *rule) {
+  const std::string r = rule;
+  if (r == "POSITIVE") return "must be > 0";
+  if (r == "NONNEG") return "must be >= 0";
+  if (r == "ALPHA") return "must satisfy RTB_ALPHA_MIN <= alpha < 1 (use model \"sts\" for the friction limit)";
+  if (r == "FRACTION") return "must be in [0, 1)";
+  if (r == "FLAG") return "must be 0 or 1";
+  if (r == "SIGNED_FRACTION") return "must be in (-1, 1)";
+  return "";
+}
+
+// Every numeric key of "params", in output order: the fields of rtb_params
+// (RTB_PARAM_FIELDS) except the top-level model setting "smoothing".
+#define RTB_JSON_KEY(name, rule, kind, unit, text) {#name, &rtb_params::name, #rule},
+const Key kAllFields[] = {RTB_PARAM_FIELDS(RTB_JSON_KEY)};
+#undef RTB_JSON_KEY
+
+bool in_params(const Key &k) { return std::string(k.name) != "smoothing"; }
 
 bool required(const Key &k, int model) {
   const std::string n = k.name;
@@ -78,7 +77,7 @@ rtb_params params_from_json(const nlohmann::json &doc, const std::string &origin
   rtb_params p;
   rtb_params_default(&p, RTB_MODEL_RT);
   // Start from zero: only what the file says (or the documented defaults).
-  for (const Key &k : kKeys) p.*(k.field) = 0.0;
+  for (const Key &k : kAllFields) p.*(k.field) = 0.0;
 
   // model
   if (!doc.contains("model")) fail("missing key \"model\" (\"rt\" or \"sts\")");
@@ -136,14 +135,16 @@ rtb_params params_from_json(const nlohmann::json &doc, const std::string &origin
   if (!jp.is_object()) fail("\"params\" must be an object, found " + type_name(jp));
   for (auto it = jp.begin(); it != jp.end(); ++it) {
     bool known = false;
-    for (const Key &k : kKeys) known = known || it.key() == k.name;
+    for (const Key &k : kAllFields) known = known || (in_params(k) && it.key() == k.name);
     if (!known) {
       std::string list;
-      for (const Key &k : kKeys) list += (list.empty() ? "" : ", ") + std::string(k.name);
+      for (const Key &k : kAllFields)
+        if (in_params(k)) list += (list.empty() ? "" : ", ") + std::string(k.name);
       fail("params: unknown key \"" + it.key() + "\" (known: " + list + ")");
     }
   }
-  for (const Key &k : kKeys) {
+  for (const Key &k : kAllFields) {
+    if (!in_params(k)) continue;
     const std::string key = std::string("params.") + k.name;
     if (!jp.contains(k.name)) {
       if (required(k, p.model))
@@ -154,39 +155,32 @@ rtb_params params_from_json(const nlohmann::json &doc, const std::string &origin
     if (!jv.is_number()) fail(key + " must be a number, found " + jv.dump());
     const double v = jv.get<double>();
     if (!std::isfinite(v)) fail(key + " is not finite");
-    switch (k.rule) {
-      case Key::positive:
-        if (v < 0.0) fail(key + " = " + num(v) + " is negative (must be > 0)");
-        if (v == 0.0 && required(k, p.model)) fail(key + " = 0 (must be > 0)");
-        break;
-      case Key::nonneg:
-        if (v < 0.0) fail(key + " = " + num(v) + " is negative (must be >= 0)");
-        break;
-      case Key::alpha:
-        if (p.model == RTB_MODEL_RT || v != 0.0) {
-          if (!(v > 0.0 && v < 1.0))
-            fail(key + " = " + num(v) + " is outside (0,1)");
-          if (p.model == RTB_MODEL_RT && v < RTB_ALPHA_MIN)
-            fail(key + " = " + num(v) + " is below RTB_ALPHA_MIN = " + num(RTB_ALPHA_MIN) +
-                 " (use model \"sts\" for the friction limit)");
-        }
-        break;
-      case Key::fraction:
-        if (!(v >= 0.0 && v < 1.0)) fail(key + " = " + num(v) + " is outside [0,1)");
-        break;
-      case Key::any:
-        break;
-    }
     p.*(k.field) = v;
   }
 
-  const rtb_status st = rtb_params_validate(&p);
+  // The library's own check names the offending field.
+  const char *bad = "";
+  const rtb_status st = rtb_params_check(&p, &bad);
   if (st != RTB_OK) {
-    std::string hint;
-    if (std::fabs(p.k_asym) > p.K0) hint = " (|params.k_asym| must not exceed params.K0)";
-    else if (p.maxwell_k > 0.0 && !(p.maxwell_tau > 0.0))
-      hint = " (params.maxwell_tau must be > 0 when params.maxwell_k > 0)";
-    fail(std::string("invalid parameters: ") + rtb_status_message(st) + hint);
+    const Key *k = nullptr;
+    for (const Key &c : kAllFields)
+      if (std::string(c.name) == bad) k = &c;
+    if (!k) fail(std::string("invalid parameters: ") + bad + ": " + rtb_status_message(st));
+    const std::string key = in_params(*k) ? std::string("params.") + bad : std::string(bad);
+    std::string why = rtb_status_message(st);
+    if (std::string(bad) == "k_asym") why = "|params.k_asym| must not exceed params.K0";
+    else if (std::string(bad) == "maxwell_tau") why = "must be > 0 when params.maxwell_k > 0";
+    else if (std::string(bad) == "sat_disp" && p.sat_force > 0.0) why = "must be > 0 when params.sat_force > 0";
+    else if (std::string(bad) == "spec_tau_min") why = "must be > 0 when the relaxation spectrum is on";
+    else if (std::string(bad) == "spec_tau_max") why = "must be >= params.spec_tau_min";
+    else if (std::string(bad) == "fric_asym" && p.model == RTB_MODEL_STS) why = "applies to the RT dashpot only (must be 0 for model \"sts\")";
+    else if (std::string(bad) == "backlash_held" && p.slack != 0.0) why = "a slack specimen floats free: backlash_held must be 0";
+    else if (*rule_text(k->rule)) why = rule_text(k->rule);
+    const double v = p.*(k->field);
+    const std::string rule = k->rule;
+    if ((rule == "POSITIVE" || rule == "NONNEG") && v < 0.0) why = "is negative (" + why + ")";
+    if (rule == "ALPHA" && !(v > 0.0 && v < 1.0)) why = "is outside (0,1); " + why;
+    fail(key + " = " + num(v) + ": " + why + " (invalid parameters: " + rtb_status_message(st) + ")");
   }
   return p;
 }
@@ -219,7 +213,8 @@ nlohmann::ordered_json params_to_json(const rtb_params &p) {
   j["integrator"] = integrator_name(p.integrator);
   if (p.smoothing != 0.0) j["smoothing"] = p.smoothing;
   nlohmann::ordered_json jp = nlohmann::ordered_json::object();
-  for (const Key &k : kKeys) {
+  for (const Key &k : kAllFields) {
+    if (!in_params(k)) continue;
     const double v = p.*(k.field);
     // Core keys of the other model are written only when set.
     const bool core = std::string(k.name) == "C0" || std::string(k.name) == "alpha" ||

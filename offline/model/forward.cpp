@@ -1,6 +1,8 @@
 // forward.cpp -- drive the real-time stepper over a record.
 #include "model/forward.h"
 
+#include "rt_bushing/src/bushing_force.h"
+
 #include <thread>
 
 #include "model/parallel_for.h"
@@ -52,14 +54,17 @@ DriveGrid make_drive_grid(const Record &rec, const SimOptions &opt) {
 }
 
 namespace {
-// Record layout per step: xb, vx, z, xb_max, y[n], then per stage h f[n] v[n] y[n].
-void store(const rtb_state &s, const rtb_stage *stg, int ns, int n, double *d) {
+// Record layout per step: xb, vx, z, xb_max, contact, z_spec[M], y[n], then
+// per stage h f[n] v[n] y[n].
+void store(const rtb_state &s, const rtb_stage *stg, int ns, int n, int M, double *d) {
   d[0] = s.xb;
   d[1] = s.vx;
   d[2] = s.z_maxwell;
   d[3] = s.xb_max;
-  std::copy(s.y, s.y + n, d + 4);
-  d += 4 + n;
+  d[4] = s.contact;
+  std::copy(s.z_spec, s.z_spec + M, d + 5);
+  std::copy(s.y, s.y + n, d + 5 + M);
+  d += 5 + M + n;
   for (int k = 0; k < ns; ++k) {
     if (stg) {
       d[0] = stg[k].h;
@@ -84,17 +89,15 @@ StepView Trajectory::step(const rtb_params &p, const DriveGrid &g, size_t i) con
   v.vx_old = a[1];
   v.z_old = a[2];
   v.xbmax_old = a[3];
+  v.zs_old = a + 5;
   v.xb_new = b[0];
   v.vx_new = b[1];
   v.z_new = b[2];
-  v.y_new = b + 4;
+  v.contact = (int)b[4];
+  v.zs_new = b + 5;
+  v.y_new = b + 5 + branches;
   v.x_new = g.x[i];
-  v.contact = 2;
-  if (p.backlash > 0.0) {
-    const double lo = v.x_new - 0.5 * p.backlash, hi = v.x_new + 0.5 * p.backlash;
-    v.contact = v.xb_new == lo ? 1 : (v.xb_new == hi ? -1 : 0);  // same expressions as step.cpp
-  }
-  const double *q = b + 4 + cells;
+  const double *q = v.y_new + cells;
   for (int k = 0; k < n_stages; ++k, q += 1 + 3 * cells)
     v.st[k] = StageView{q[0], q + 1, q + 1 + cells, q + 1 + 2 * cells, nullptr};
   return v;
@@ -109,6 +112,7 @@ Trajectory run_forward(const rtb_params &p, const DriveGrid &grid, bool keep_tra
   tr.first_sample = grid.first_sample;
   tr.n_stages = rtb_integrator_stages(&p);
   tr.cells = p.cells;
+  tr.branches = rtb_spectrum_branches(&p);
   const size_t n = grid.x.size();
   rtb_state s;
   rtb_status st = rtb_state_init(&s, &p, grid.x[0]);
@@ -123,7 +127,7 @@ Trajectory run_forward(const rtb_params &p, const DriveGrid &grid, bool keep_tra
   const size_t S = tr.stride();
   if (keep_trace) {
     tr.data.resize(n * S);
-    store(s, nullptr, tr.n_stages, p.cells, &tr.data[0]);
+    store(s, nullptr, tr.n_stages, p.cells, tr.branches, &tr.data[0]);
   }
   rtb_stage stg[2];
   for (size_t i = 1; i < n; ++i) {
@@ -138,7 +142,7 @@ Trajectory run_forward(const rtb_params &p, const DriveGrid &grid, bool keep_tra
     tr.newton_iterations += next.last_iterations;
     s = next;
     tr.force[i] = F;
-    if (keep_trace) store(s, stg, tr.n_stages, p.cells, &tr.data[i * S]);
+    if (keep_trace) store(s, stg, tr.n_stages, p.cells, tr.branches, &tr.data[i * S]);
   }
   return tr;
 }

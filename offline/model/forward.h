@@ -28,6 +28,7 @@ struct StageLin {
   double D[RTB_MAX_CELLS];       // dv/df
   double dv_dC0[RTB_MAX_CELLS];  // dv/dC0 at fixed f
   double dv_dalpha[RTB_MAX_CELLS];
+  double dv_dfa[RTB_MAX_CELLS];  // dv/dfric_asym at fixed f
 };
 
 struct StageView {
@@ -44,24 +45,25 @@ struct StepView {
   double xb_old, xb_new;      // bushing displacements
   double vx_old, vx_new;      // input velocity estimates (inertia)
   double z_old, z_new;        // Maxwell branch
+  const double *zs_old, *zs_new;  // relaxation-spectrum branches (M each)
   double xbmax_old;           // Mullins memory before the step
   double x_new;               // input displacement
-  int contact;                // backlash: +1 / -1 in contact at x -/+ g/2, 0 free,
-                              // 2 no clearance (xb = x)
+  int contact;                // rtb_state.contact: +1 / -1 in contact at x -/+ g/2,
+                              // 0 floating free, 3 held, 2 no clearance (xb = x)
   const double *y_new;        // cell DOFs after the step
   StageView st[2];
 };
 
 // Everything the adjoint needs from one forward run, stored compactly: per
-// step 4 scalars + y + per stage (h, f, v, y).
+// step 5 scalars + spectrum memories + y + per stage (h, f, v, y).
 struct Trajectory {
   std::vector<double> force;           // model force at each drive step
-  int n_stages = 1, cells = 0;
+  int n_stages = 1, cells = 0, branches = 0;
   int first_sample = 0;
   long newton_iterations = 0;
   int not_converged = 0;               // steps reporting RTB_NOT_CONVERGED
   std::vector<double> data;            // empty without trace
-  size_t stride() const { return 4 + cells + n_stages * (1 + 3 * (size_t)cells); }
+  size_t stride() const { return 5 + branches + cells + n_stages * (1 + 3 * (size_t)cells); }
   StepView step(const rtb_params &p, const DriveGrid &g, size_t i) const;
 };
 

@@ -47,10 +47,12 @@ namespace {
 // 2nd-order Butterworth low-pass by the bilinear transform with pre-warping,
 // transposed direct form II, started in its steady state for the first input
 // (no start-up transient for a record that begins at a constant force).
+// Q = 1/sqrt(2) is the whole 2nd-order filter; a 4th-order Butterworth is
+// the cascade Q = 0.5412, 1.3066 (poles at 22.5 and 67.5 degrees).
 struct Biquad {
   double b0, b1, b2, a1, a2;
-  Biquad(double dt, double fc) {
-    const double K = std::tan(M_PI * fc * dt), K2 = K * K, r2 = std::sqrt(2.0);
+  Biquad(double dt, double fc, double Q = M_SQRT1_2) {
+    const double K = std::tan(M_PI * fc * dt), K2 = K * K, r2 = 1.0 / Q;
     const double n = 1.0 / (1.0 + r2 * K + K2);
     b0 = K2 * n;
     b1 = 2.0 * b0;
@@ -71,22 +73,26 @@ struct Biquad {
 
 }  // namespace
 
-std::vector<double> lowpass_zero_phase(const std::vector<double> &y, double dt, double fc) {
+std::vector<double> lowpass_zero_phase(const std::vector<double> &y, double dt, double fc,
+                                       int order) {
   const size_t n = y.size();
   if (n < 2 || !(fc > 0.0)) return y;
   // Odd reflection at both ends (2 y0 - y[k]) over ~3 time constants of the
   // filter, so the forward-backward pass has no end transients.
-  const size_t pad = std::min(n - 1, (size_t)std::ceil(3.0 / (fc * dt)));
+  const size_t pad = std::min(n - 1, (size_t)std::ceil((order == 4 ? 5.0 : 3.0) / (fc * dt)));
   std::vector<double> e;
   e.reserve(n + 2 * pad);
   for (size_t k = pad; k >= 1; --k) e.push_back(2.0 * y[0] - y[k]);
   e.insert(e.end(), y.begin(), y.end());
   for (size_t k = 1; k <= pad; ++k) e.push_back(2.0 * y[n - 1] - y[n - 1 - k]);
-  const Biquad f(dt, fc);
-  f.run(e);
-  std::reverse(e.begin(), e.end());
-  f.run(e);
-  std::reverse(e.begin(), e.end());
+  const std::vector<Biquad> sections =
+      order == 4 ? std::vector<Biquad>{Biquad(dt, fc, 0.54119610014619698),
+                                       Biquad(dt, fc, 1.3065629648763766)}
+                 : std::vector<Biquad>{Biquad(dt, fc)};
+  for (int pass = 0; pass < 2; ++pass) {
+    for (const Biquad &f : sections) f.run(e);
+    std::reverse(e.begin(), e.end());
+  }
   return std::vector<double>(e.begin() + (long)pad, e.begin() + (long)(pad + n));
 }
 

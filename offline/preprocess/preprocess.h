@@ -51,8 +51,11 @@ void apply_preprocess(const Preprocess &pp, std::vector<Record> &recs, bool use_
 // running extreme. Robust to sensor noise below the band.
 std::vector<size_t> displacement_reversals(const std::vector<double> &x, double band);
 
-// Zero-phase low-pass (see Preprocess::lowpass_hz) of y sampled every dt s.
-std::vector<double> lowpass_zero_phase(const std::vector<double> &y, double dt, double cutoff_hz);
+// Zero-phase low-pass (see Preprocess::lowpass_hz) of y sampled every dt s:
+// a Butterworth of order 2 (default) or 4 run forward and backward
+// (magnitude 1 / (1 + (f/fc)^(2 order)), no phase).
+std::vector<double> lowpass_zero_phase(const std::vector<double> &y, double dt, double cutoff_hz,
+                                       int order = 2);
 
 nlohmann::ordered_json preprocess_json(const Preprocess &pp);
 

@@ -67,22 +67,22 @@ StudyResult run_study(const StudySpec &spec, const std::string &data_dir, bool q
 
   // What is left after the extension: each listed candidate stacked on the
   // chosen cause, fitted jointly again.
-  if (D.chosen >= 0) {
-    const CandidateOutcome &ch = D.candidates[(size_t)D.chosen];
+  if (!D.causes.empty()) {
     const DataScales sc = data_scales(fit);
+    std::vector<Candidate> causes;
+    for (const Cause &c : D.causes) causes.push_back(c.cand);
     for (const std::string &name : spec.second_stage) {
-      if (name == ch.cand.name) continue;
       for (const Candidate &c : candidate_vocabulary()) {
-        if (c.name != name) continue;
-        ExtFitSpec s2 = candidate_spec(ch.cand, sc);
-        const ExtFitSpec add2 = candidate_spec(c, sc);
-        s2.free.insert(s2.free.end(), c.extra.begin(), c.extra.end());
-        for (ParamId id : c.extra) s2.scale[id] = add2.scale[id];
-        s2.fit_delay = s2.fit_delay || c.delay;
-        s2.fit_offset = s2.fit_offset || c.offset;
+        bool clash = c.name != name || !c.variant.empty();
+        for (const Candidate &k : causes) clash = clash || candidates_conflict(c, k);
+        if (clash) continue;
+        std::vector<Candidate> with = causes;
+        with.push_back(c);
+        const ExtFitSpec s2 = combined_spec(with, sc);
         ExtModel m = D.extended;
+        if (c.configure) c.configure(m.p, sc);
         seed_extra(c, sc, m);
-        if (!quiet) std::fprintf(stderr, "report: %s + %s\n", ch.cand.name.c_str(), name.c_str());
+        if (!quiet) std::fprintf(stderr, "report: %s + %s\n", D.cause.c_str(), name.c_str());
         const ExtFitResult f = fit_extended(fit, m, s2, o.misfit);
         SecondStage st;
         st.name = name;

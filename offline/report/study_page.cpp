@@ -35,7 +35,7 @@ std::string params_table(const StudyResult &r) {
   std::ostringstream o;
   o << "| parameter | baseline RT | std. dev. | extended | std. dev. |\n|---|---|---|---|---|\n";
   const Uncertainty &u = D.baseline_fit.uncertainty;
-  const ExtFitResult *ext = D.chosen >= 0 ? &D.candidates[(size_t)D.chosen].fit : nullptr;
+  const ExtFitResult *ext = D.causes.empty() ? nullptr : &D.extended_fit;
   std::vector<std::string> names;
   for (ParamId id : u.ids) names.push_back(param_name(id));
   if (ext)

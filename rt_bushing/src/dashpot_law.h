@@ -15,6 +15,14 @@
 #include <float.h>
 #include <math.h>
 
+/* Dashpot level with the friction asymmetry a = rtb_params.fric_asym:
+ * C0 (1 + a) where the cell moves (and pushes) positively, C0 (1 - a)
+ * negatively. `sign_of` is the cell velocity or force (same sign); at 0 the
+ * law gives 0 whatever the level. d level / d a = +-C0. */
+static inline double rtb_dashpot_level(double C0, double a, double sign_of) {
+  return sign_of < 0.0 ? C0 * (1.0 - a) : C0 * (1.0 + a);
+}
+
 /* psi(v), eq. (1). */
 static inline double rtb_law_force(double v, double C0, double alpha) {
   if (v == 0.0) return 0.0;

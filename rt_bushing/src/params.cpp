@@ -26,41 +26,74 @@ extern "C" rtb_status rtb_params_default(rtb_params *p, int model) {
   return RTB_OK;
 }
 
-static int finite_all(const rtb_params *p) {
-  const double v[] = {p->K0, p->Kpa, p->Kr, p->C0, p->alpha, p->Ff, p->k3, p->k_asym,
-                      p->maxwell_k, p->maxwell_tau, p->viscous_c, p->mass, p->backlash,
-                      p->mullins, p->smoothing, p->sat_force, p->sat_disp};
-  for (size_t i = 0; i < sizeof v / sizeof v[0]; ++i)
-    if (!isfinite(v[i])) return 0;
-  return 1;
+/* Rule of one field (RTB_PARAM_FIELDS). `required` fields of rule POSITIVE
+ * must be > 0; the others >= 0 (e.g. C0 of an STS model). */
+enum field_rule { POSITIVE, NONNEG, ANY, ALPHA, FRACTION, FLAG, SIGNED_FRACTION };
+
+static int required_positive(const rtb_params *p, const char *name) {
+  if (!strcmp(name, "Kpa") || !strcmp(name, "Kr")) return 1;
+  if (!strcmp(name, "C0")) return p->model == RTB_MODEL_RT;
+  if (!strcmp(name, "Ff")) return p->model == RTB_MODEL_STS;
+  return 0;
+}
+
+static rtb_status check_rule(const rtb_params *p, const char *name, double v, field_rule rule) {
+  if (!isfinite(v)) return RTB_ERR_PARAM_NONFINITE;
+  switch (rule) {
+    case POSITIVE: return (v > 0.0 || (v == 0.0 && !required_positive(p, name)))
+                              ? RTB_OK : RTB_ERR_PARAM_RANGE;
+    case NONNEG: return v >= 0.0 ? RTB_OK : RTB_ERR_PARAM_RANGE;
+    case ANY: return RTB_OK;
+    case ALPHA:
+      return (p->model != RTB_MODEL_RT || (v >= RTB_ALPHA_MIN && v < 1.0)) ? RTB_OK : RTB_ERR_ALPHA;
+    case FRACTION: return (v >= 0.0 && v < 1.0) ? RTB_OK : RTB_ERR_PARAM_RANGE;
+    case FLAG: return (v == 0.0 || v == 1.0) ? RTB_OK : RTB_ERR_PARAM_RANGE;
+    case SIGNED_FRACTION: return (v > -1.0 && v < 1.0) ? RTB_OK : RTB_ERR_PARAM_RANGE;
+  }
+  return RTB_ERR_PARAM_RANGE;
+}
+
+/* Rules that tie two fields together; *field names the one to change. */
+static rtb_status check_pairs(const rtb_params *p, const char **field) {
+  struct { int bad; const char *name; } rules[] = {
+      {fabs(p->k_asym) > p->K0, "k_asym"},                       /* |k_asym| <= K0 */
+      {p->maxwell_k > 0.0 && !(p->maxwell_tau > 0.0), "maxwell_tau"},
+      {p->sat_force > 0.0 && !(p->sat_disp > 0.0), "sat_disp"},
+      {(p->spec_k > 0.0 || p->spec_tau_max > 0.0) && !(p->spec_tau_min > 0.0), "spec_tau_min"},
+      {p->spec_tau_min > 0.0 && !(p->spec_tau_max >= p->spec_tau_min), "spec_tau_max"},
+      {p->model == RTB_MODEL_STS && p->fric_asym != 0.0, "fric_asym"},  /* RT dashpot only */
+      {p->slack != 0.0 && p->backlash_held != 0.0, "backlash_held"},    /* slack floats */
+  };
+  for (size_t i = 0; i < sizeof rules / sizeof rules[0]; ++i)
+    if (rules[i].bad) { *field = rules[i].name; return RTB_ERR_PARAM_RANGE; }
+  return RTB_OK;
+}
+
+extern "C" rtb_status rtb_params_check(const rtb_params *p, const char **field) {
+  const char *dummy;
+  const char **bad = field ? field : &dummy;
+  *bad = "";
+  if (!p) return RTB_ERR_NULL;
+  if (p->abi_version != RTB_ABI_VERSION) { *bad = "abi_version"; return RTB_ERR_ABI; }
+  if (p->model != RTB_MODEL_RT && p->model != RTB_MODEL_STS) { *bad = "model"; return RTB_ERR_MODEL; }
+  if (p->integrator != RTB_INTEGRATOR_SDIRK2 && p->integrator != RTB_INTEGRATOR_BE) {
+    *bad = "integrator";
+    return RTB_ERR_MODEL;
+  }
+  if (p->cells < 1 || p->cells > RTB_MAX_CELLS) { *bad = "cells"; return RTB_ERR_CELLS; }
+  rtb_status st;
+#define RTB_CHECK_FIELD(name, rule, kind, unit, text)      \
+  st = check_rule(p, #name, p->name, rule);                \
+  if (st != RTB_OK) { *bad = #name; return st; }
+  RTB_PARAM_FIELDS(RTB_CHECK_FIELD)
+#undef RTB_CHECK_FIELD
+  for (int i = 0; i < RTB_N_RESERVED; ++i)
+    if (p->reserved[i] != 0.0) { *bad = "reserved"; return RTB_ERR_RESERVED; }
+  return check_pairs(p, bad);
 }
 
 extern "C" rtb_status rtb_params_validate(const rtb_params *p) {
-  if (!p) return RTB_ERR_NULL;
-  if (p->abi_version != RTB_ABI_VERSION) return RTB_ERR_ABI;
-  if (p->model != RTB_MODEL_RT && p->model != RTB_MODEL_STS) return RTB_ERR_MODEL;
-  if (p->integrator != RTB_INTEGRATOR_SDIRK2 && p->integrator != RTB_INTEGRATOR_BE)
-    return RTB_ERR_MODEL;
-  if (p->cells < 1 || p->cells > RTB_MAX_CELLS) return RTB_ERR_CELLS;
-  if (!finite_all(p)) return RTB_ERR_PARAM_NONFINITE;
-  for (int i = 0; i < RTB_N_RESERVED; ++i)
-    if (p->reserved[i] != 0.0) return RTB_ERR_RESERVED;
-  if (p->K0 < 0.0 || !(p->Kpa > 0.0) || !(p->Kr > 0.0)) return RTB_ERR_PARAM_RANGE;
-  if (p->model == RTB_MODEL_RT) {
-    if (!(p->C0 > 0.0)) return RTB_ERR_PARAM_RANGE;
-    if (!(p->alpha >= RTB_ALPHA_MIN && p->alpha < 1.0)) return RTB_ERR_ALPHA;
-  } else if (!(p->Ff > 0.0)) {
-    return RTB_ERR_PARAM_RANGE;
-  }
-  if (fabs(p->k_asym) > p->K0) return RTB_ERR_PARAM_RANGE;
-  if (p->maxwell_k < 0.0 || p->maxwell_tau < 0.0) return RTB_ERR_PARAM_RANGE;
-  if (p->maxwell_k > 0.0 && !(p->maxwell_tau > 0.0)) return RTB_ERR_PARAM_RANGE;
-  if (p->viscous_c < 0.0 || p->mass < 0.0 || p->backlash < 0.0) return RTB_ERR_PARAM_RANGE;
-  if (!(p->mullins >= 0.0 && p->mullins < 1.0)) return RTB_ERR_PARAM_RANGE;
-  if (p->smoothing < 0.0) return RTB_ERR_PARAM_RANGE; /* eq. (14): s >= 0, 0 = off */
-  if (p->sat_force < 0.0 || p->sat_disp < 0.0) return RTB_ERR_PARAM_RANGE;
-  if (p->sat_force > 0.0 && !(p->sat_disp > 0.0)) return RTB_ERR_PARAM_RANGE;
-  return RTB_OK;
+  return rtb_params_check(p, NULL);
 }
 
 extern "C" void rtb_settings_default(rtb_settings *s) {

@@ -48,11 +48,6 @@ rtb_status rtb_chain_advance(const rtb_params *p, const rtb_settings *set,
 rtb_status rtb_sts_solve(const rtb_params *p, const double *y_old, double xb_new,
                          double *y_new, int *iterations, double *dy1_dxb);
 
-/* Force of the bushing (without inertia) for its displacement xb and DOF y1,
- * eq. (11) plus the elastic/viscous extensions; also dF/dxb at fixed y1. */
-double rtb_bushing_force(const rtb_params *p, const rtb_state *s_old, double xb,
-                         double y1, double z_maxwell, double dt, double *dF_dxb);
-
 /* The full step with all internals exposed; rtb_evaluate is a thin wrapper.
  * `stages` may be NULL. */
 rtb_status rtb_step_detailed(const rtb_state *s, const rtb_params *p,

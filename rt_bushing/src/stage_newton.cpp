@@ -39,6 +39,8 @@ struct Chain {
   int n;
   double Kpa, Kr, C0, alpha, h;
   double s;  /* eq. (14) smoothing [1/velocity], 0 = exact eq. (1) */
+  double asym; /* fric_asym: level C0 (1 +- asym) by the sign of the motion */
+  double level(double sign_of) const { return rtb_dashpot_level(C0, asym, sign_of); }
 };
 
 /* H = f + h K v - r; returns the max-norm (and the squared 2-norm in *sq),
@@ -63,7 +65,7 @@ double residual(const Chain &ch, const double *f, const double *v, const double 
 
 extern "C" rtb_status rtb_stage_solve(const rtb_params *p, const rtb_settings *set,
                                       const double *v_guess, rtb_stage *st) {
-  const Chain ch = {p->cells, p->Kpa, p->Kr, p->C0, p->alpha, st->h, p->smoothing};
+  const Chain ch = {p->cells, p->Kpa, p->Kr, p->C0, p->alpha, st->h, p->smoothing, p->fric_asym};
   const int n = ch.n;
   if (n < 1 || n > RTB_MAX_CELLS) return RTB_ERR_STATE;
   double r[RTB_MAX_CELLS], H[RTB_MAX_CELLS], D[RTB_MAX_CELLS], dl[RTB_MAX_CELLS];
@@ -82,7 +84,7 @@ extern "C" rtb_status rtb_stage_solve(const rtb_params *p, const rtb_settings *s
   double *f = st->f, *v = st->v;
   for (int k = 0; k < n; ++k) {
     v[k] = v_guess ? v_guess[k] : 0.0;
-    f[k] = rtb_dashpot_force(v[k], ch.C0, ch.alpha, ch.s);
+    f[k] = rtb_dashpot_force(v[k], ch.level(v[k]), ch.alpha, ch.s);
   }
   double h2;
   double hnorm = residual(ch, f, v, r, H, &h2);
@@ -101,7 +103,7 @@ extern "C" rtb_status rtb_stage_solve(const rtb_params *p, const rtb_settings *s
 
     /* Newton step: (I + h K D) df = -H. Column k of h K D carries D[k], so
      * every D must be known before the matrix is assembled. */
-    for (int k = 0; k < n; ++k) D[k] = rtb_dashpot_dvdf(f[k], v[k], ch.C0, ch.alpha, ch.s);
+    for (int k = 0; k < n; ++k) D[k] = rtb_dashpot_dvdf(f[k], v[k], ch.level(f[k]), ch.alpha, ch.s);
     for (int k = 0; k < n; ++k) {
       const double hKD = ch.h * rtb_chain_diag(k, ch.Kpa, ch.Kr) * D[k];
       steep[k] = hKD > 1.0;
@@ -122,11 +124,11 @@ extern "C" rtb_status rtb_stage_solve(const rtb_params *p, const rtb_settings *s
       for (int k = 0; k < n; ++k) {
         if (steep[k]) {
           vt[k] = v[k] + t * D[k] * dl[k];
-          ft[k] = rtb_dashpot_force(vt[k], ch.C0, ch.alpha, ch.s);
+          ft[k] = rtb_dashpot_force(vt[k], ch.level(vt[k]), ch.alpha, ch.s);
         } else {
           ft[k] = f[k] + t * dl[k];
           /* guess: the tangent prediction (warm start of the s > 0 inverse) */
-          vt[k] = rtb_dashpot_velocity(ft[k], ch.C0, ch.alpha, ch.s, v[k] + t * D[k] * dl[k]);
+          vt[k] = rtb_dashpot_velocity(ft[k], ch.level(ft[k]), ch.alpha, ch.s, v[k] + t * D[k] * dl[k]);
         }
       }
       double ht2;

@@ -6,6 +6,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "bushing_force.h"
 #include "dashpot_law.h"
 #include "rtb_internal.h"
 #include "tridiagonal.h"
@@ -65,7 +66,8 @@ static void stage_tangent(const rtb_params *p, const rtb_stage *st, const double
   if (n < 1 || n > RTB_MAX_CELLS) return;
   double lo[RTB_MAX_CELLS], di[RTB_MAX_CELLS], up[RTB_MAX_CELLS], work[RTB_MAX_CELLS];
   for (int k = 0; k < n; ++k) {
-    const double D = rtb_dashpot_dvdf(st->f[k], st->v[k], p->C0, p->alpha, p->smoothing);
+    const double D = rtb_dashpot_dvdf(st->f[k], st->v[k], rtb_dashpot_level(p->C0, p->fric_asym, st->f[k]),
+                                      p->alpha, p->smoothing);
     di[k] = 1.0 + st->h * D * rtb_chain_diag(k, p->Kpa, p->Kr);
     lo[k] = k > 0 ? -st->h * D * p->Kr : 0.0;
     up[k] = k + 1 < n ? -st->h * D * p->Kr : 0.0;
@@ -90,60 +92,21 @@ static double chain_dy1_dxb(const rtb_params *p, const rtb_stage st[2], double d
   return dy[0];
 }
 
-/* Maxwell branch with xb linear over the step, integrated exactly:
- * tau z' = xb - z. Returns z_new; *dz = d z_new / d xb_new. */
-static double maxwell_update(const rtb_params *p, const rtb_state *s, double xb, double dt,
-                             double *dz) {
-    /* z evolves whenever tau is set, so d F / d maxwell_k is exact at k = 0. */
-  if (!(p->maxwell_tau > 0.0)) { *dz = 0.0; return s->z_maxwell; }
-  const double tau = p->maxwell_tau;
-  const double one_minus_e = -expm1(-dt / tau);
-  const double slope = (xb - s->xb) / dt;
-  const double z = xb - slope * tau + (1.0 - one_minus_e) * (s->z_maxwell - s->xb + slope * tau);
-  *dz = 1.0 - tau / dt * one_minus_e;
-  return z;
-}
-
-extern "C" double rtb_bushing_force(const rtb_params *p, const rtb_state *s_old, double xb,
-                                    double y1, double z, double dt, double *dF_dxb) {
-  /* Mullins: K0 softened by (1 - mu (1 - |xb|/xb_max)) below the prior max. */
-  const double ax = fabs(xb);
-  double eta = 1.0, deta = 0.0;
-  if (p->mullins > 0.0 && ax < s_old->xb_max) {
-    eta = 1.0 - p->mullins * (1.0 - ax / s_old->xb_max);
-    deta = p->mullins * (xb >= 0.0 ? 1.0 : -1.0) / s_old->xb_max;
-  }
-  const double sgn = xb > 0.0 ? 1.0 : (xb < 0.0 ? -1.0 : 0.0);
-  /* Softening spring sat_force tanh(xb / sat_disp); its slope sat_force/sat_disp sech^2. */
-  double sat = 0.0, dsat = 0.0;
-  if (p->sat_disp > 0.0) {
-    const double th = tanh(xb / p->sat_disp);
-    sat = p->sat_force * th;
-    dsat = p->sat_force / p->sat_disp * (1.0 - th * th);
-  }
-  const double F = sat + p->K0 * xb * eta          /* eq. (11): K0 y0 */
-                   + p->Kpa * (xb - y1)      /* eq. (11): Kpa (y0 - y1) */
-                   + p->k3 * xb * xb * xb + p->k_asym * ax +
-                   p->maxwell_k * (xb - z) + p->viscous_c * (xb - s_old->xb) / dt;
-  if (dF_dxb)
-    *dF_dxb = p->K0 * (eta + xb * deta) + p->Kpa + 3.0 * p->k3 * xb * xb + p->k_asym * sgn +
-              p->maxwell_k + p->viscous_c / dt + dsat; /* at fixed y1 and z */
-  return F;
-}
-
 namespace {
 
-/* Response of the bushing (no inertia) to a bushing displacement xb. */
+/* Response of the bushing (no inertia) to a bushing displacement xb: the
+ * cells, the branch memories and the force of bushing_force.h. */
 struct Response {
   rtb_stage st[2];
   double y[RTB_MAX_CELLS];
-  double z, F, dF;  /* force and total dF/dxb */
+  double z, z_spec[RTB_MAX_BRANCHES];
+  double F, dF;  /* force and total dF/dxb */
   int iterations;
   rtb_status status;
 };
 
-void respond(const rtb_state *s, const rtb_params *p, const rtb_settings *set, double xb,
-             double dt, bool tangent, Response *r) {
+void respond(const rtb_state *s, const rtb_params *p, const rtb_settings *set,
+             const rtb_spectrum *sp, double xb, double dt, bool tangent, Response *r) {
   const int n = p->cells;
   double dy1 = 0.0;
   if (p->model == RTB_MODEL_RT) {
@@ -155,52 +118,102 @@ void respond(const rtb_state *s, const rtb_params *p, const rtb_settings *set, d
   } else {
     r->status = rtb_sts_solve(p, s->y, xb, r->y, &r->iterations, tangent ? &dy1 : NULL);
   }
-  double dz;
-  r->z = maxwell_update(p, s, xb, dt, &dz);
-  double dF_fixed;
-  r->F = rtb_bushing_force(p, s, xb, r->y[0], r->z, dt, &dF_fixed);
-  /* dF_fixed holds y1 and z fixed; add their own dependence on xb. */
-  r->dF = dF_fixed - p->Kpa * dy1 - p->maxwell_k * dz;
+  /* Branch memories; z evolves whenever its tau is set, so dF/dk is exact at k = 0. */
+  rtb_maxwell_lin m;
+  double dz = 0.0, dF_branches = 0.0;
+  r->z = s->z_maxwell;
+  if (p->maxwell_tau > 0.0) {
+    rtb_maxwell_step(p->maxwell_tau, dt, s->xb, xb, s->z_maxwell, &m);
+    r->z = m.z;
+    dz = m.d_xb_new;
+  }
+  for (int j = 0; j < sp->M; ++j) {
+    rtb_maxwell_step(sp->tau[j], dt, s->xb, xb, s->z_spec[j], &m);
+    r->z_spec[j] = m.z;
+    dF_branches += p->spec_k * sp->w[j] * m.d_xb_new;
+  }
+  rtb_force_lin L;
+  rtb_force_eval(p, xb, s->xb, s->xb_max, r->y[0], r->z, r->z_spec, sp, dt, &L);
+  r->F = L.F;
+  /* L.d_xb holds y1 and the memories fixed; add their own dependence on xb. */
+  r->dF = L.d_xb - p->Kpa * dy1 - p->maxwell_k * dz - dF_branches;
+}
+
+/* Where the bushing end may be: xb in [lo, hi] (hi = +inf for a slack
+ * specimen, which never pushes); phase codes as rtb_state.contact. */
+struct Gap {
+  double lo, hi;
+  bool held;
+};
+
+Gap gap_of(const rtb_params *p, double x) {
+  Gap g;
+  g.lo = x - 0.5 * p->backlash;
+  g.hi = p->slack != 0.0 ? INFINITY : x + 0.5 * p->backlash;
+  g.held = p->backlash_held != 0.0;
+  return g;
 }
 
 }  // namespace
 
-/* Clearance of total width g in series (backlash): the bushing end xb stays
- * within [x - g/2, x + g/2]; inside the gap the bushing carries no load, so
- * xb = clamp(xb_free, x - g/2, x + g/2) with F(xb_free) = 0. F is increasing
- * in xb, so a safeguarded Newton/bisection on [x-g/2, x+g/2] finds it.
- * Bounded: at most 2 + RTB_BACKLASH_ITERS responses per step. */
+/* Clearance of total width g in series (backlash) and/or a slack specimen:
+ * the bushing end xb stays within [lo, hi]. Floating end: inside, the bushing
+ * carries no load, so xb = clamp(xb_free, lo, hi) with F(xb_free) = 0; F is
+ * increasing in xb, so a safeguarded Newton/bisection finds it (for hi = inf
+ * the bracket is first extended by Newton steps). Held end: xb stays where it
+ * was, clamped into [lo, hi]. Bounded: at most 3 + RTB_BACKLASH_ITERS +
+ * RTB_SLACK_EXTEND responses per step. */
 #define RTB_BACKLASH_ITERS 30
-static void resolve_backlash(const rtb_state *s, const rtb_params *p, const rtb_settings *set,
-                             double x, double dt, Response *r, double *xb_out, int *contact) {
-  const double lo = x - 0.5 * p->backlash, hi = x + 0.5 * p->backlash;
-  double xb = fmin(fmax(s->xb, lo), hi);
-  respond(s, p, set, xb, dt, true, r);
-  *contact = 1;
-  if (r->status < 0) { *xb_out = xb; return; }
-  if ((xb == lo && r->F >= 0.0) || (xb == hi && r->F <= 0.0) || r->F == 0.0) {
-    *xb_out = xb;
-    *contact = r->F != 0.0;
-    return;
-  }
-  double a = lo, b = hi;
+#define RTB_SLACK_EXTEND 8
+static int phase_at(const Gap &g, double xb) { return xb == g.lo ? 1 : (xb == g.hi ? -1 : 0); }
+
+static void resolve_gap(const rtb_state *s, const rtb_params *p, const rtb_settings *set,
+                        const rtb_spectrum *sp, double x, double dt, Response *r, double *xb_out,
+                        int *contact) {
+  const Gap g = gap_of(p, x);
+  double xb = fmin(fmax(s->xb, g.lo), g.hi);
+  respond(s, p, set, sp, xb, dt, true, r);
+  *xb_out = xb;
+  if (g.held) { *contact = xb == g.lo ? 1 : (xb == g.hi ? -1 : 3); return; }
+  *contact = phase_at(g, xb);
+  if (r->status < 0) return;
+  if ((xb == g.lo && r->F >= 0.0) || (xb == g.hi && r->F <= 0.0)) return;
+  if (r->F == 0.0) { *contact = 0; return; }
+  double a = g.lo, b = g.hi;
   if (r->F > 0.0) {
     b = xb;
-    respond(s, p, set, lo, dt, true, r);
-    if (r->status < 0 || r->F >= 0.0) { *xb_out = lo; return; }
+    if (xb != g.lo) {
+      respond(s, p, set, sp, g.lo, dt, true, r);
+      if (r->status < 0 || r->F >= 0.0) { *xb_out = g.lo; *contact = 1; return; }
+    }
   } else {
     a = xb;
-    respond(s, p, set, hi, dt, true, r);
-    if (r->status < 0 || r->F <= 0.0) { *xb_out = hi; return; }
+    if (isfinite(g.hi)) {
+      respond(s, p, set, sp, g.hi, dt, true, r);
+      if (r->status < 0 || r->F <= 0.0) { *xb_out = g.hi; *contact = -1; return; }
+    } else {
+      /* Slack: extend a bracket upwards by doubled Newton steps. */
+      double t = xb, Ft = r->F, dFt = r->dF;
+      b = INFINITY;
+      for (int e = 0; e < RTB_SLACK_EXTEND && !isfinite(b); ++e) {
+        const double step = dFt > 0.0 ? -Ft / dFt : fabs(t - x) + p->backlash + 1e-9;
+        t += 2.0 * step * (double)(1 << e);
+        respond(s, p, set, sp, t, dt, true, r);
+        if (r->status < 0) break;
+        if (r->F > 0.0) b = t; else { a = t; Ft = r->F; dFt = r->dF; }
+      }
+      if (!isfinite(b)) { *xb_out = a; *contact = 0; return; } /* best effort, bounded */
+    }
   }
   *contact = 0;
-  double scale = fabs(p->K0) + p->Kpa;
+  const double scale = fabs(p->K0) + p->Kpa;
+  const double width = b - a;
   xb = 0.5 * (a + b);
   for (int it = 0; it < RTB_BACKLASH_ITERS; ++it) {
-    respond(s, p, set, xb, dt, true, r);
+    respond(s, p, set, sp, xb, dt, true, r);
     if (r->status < 0) break;
     if (r->F > 0.0) b = xb; else a = xb;
-    if (fabs(r->F) <= set->tol * scale * (fabs(xb) + p->backlash) || b - a <= 4 * DBL_EPSILON * fabs(xb))
+    if (fabs(r->F) <= set->tol * scale * (fabs(xb) + width) || b - a <= 4 * DBL_EPSILON * fabs(xb))
       break;
     double nx = xb - r->F / r->dF;
     xb = (r->dF > 0.0 && nx > a && nx < b) ? nx : 0.5 * (a + b);
@@ -230,17 +243,22 @@ extern "C" rtb_status rtb_step_detailed(const rtb_state *s, const rtb_params *p,
   st = rtb_settings_resolve(set_in, &set);
   if (st != RTB_OK) return st;
 
+  rtb_spectrum sp;
+  rtb_spectrum_layout(p, &sp);
   Response r;
   double xb = x;
-  int contact = 1;
-  if (p->backlash > 0.0) resolve_backlash(s, p, &set, x, dt, &r, &xb, &contact);
-  else respond(s, p, &set, xb, dt, dforce_dx != NULL, &r);
+  int contact = 2;
+  if (p->backlash > 0.0 || p->slack != 0.0) resolve_gap(s, p, &set, &sp, x, dt, &r, &xb, &contact);
+  else respond(s, p, &set, &sp, xb, dt, dforce_dx != NULL, &r);
   if (r.status < 0) return r.status;
 
   /* Inertia of the load path: F += m a with backward differences of x. */
   const double vx = (x - s->x) / dt;
   const double F = r.F + p->mass * (vx - s->vx) / dt;
-  const double dF = (contact ? r.dF : 0.0) + p->mass / (dt * dt);
+  /* dF/dx: through xb = x (or x -+ g/2) in contact; a floating end does not
+   * follow x, and a held one stays where it was. */
+  const bool follows = contact == 2 || contact == 1 || contact == -1;
+  const double dF = (follows ? r.dF : 0.0) + p->mass / (dt * dt);
   if (!isfinite(F) || !isfinite(dF)) return RTB_ERR_OVERFLOW;
 
   const int n = p->cells;
@@ -257,6 +275,8 @@ extern "C" rtb_status rtb_step_detailed(const rtb_state *s, const rtb_params *p,
     next.dt_prev = dt;
   }
   next.z_maxwell = r.z;
+  memcpy(next.z_spec, r.z_spec, sizeof(double) * (size_t)sp.M);
+  next.contact = contact;
   next.xb_max = fmax(s->xb_max, fabs(xb));
   next.vx = vx;
   next.steps = s->steps + 1;
@@ -288,6 +308,8 @@ extern "C" rtb_status rtb_state_init(rtb_state *s, const rtb_params *p, rtb_real
   for (int k = 0; k < p->cells; ++k) t.y[k] = k == 0 ? p->Kpa * x0 : 0.0;
   rtb_chain_solve(p->cells, p->Kpa, p->Kr, t.y, work);
   t.z_maxwell = x0;
+  for (int j = 0; j < RTB_MAX_BRANCHES; ++j) t.z_spec[j] = x0;
+  t.contact = 2;
   t.xb_max = fabs(x0);
   t.force = rtb_static_force(p, x0);
   *s = t;

@@ -1,0 +1,144 @@
+// plausibility.cpp -- see plausibility.h.
+#include "diagnose/plausibility.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace rtb {
+
+namespace {
+
+Eigen::VectorXd predict(const ExtModel &m, const Record &rec, const MisfitOptions &opt) {
+  ExtFitSpec none;
+  none.free.clear();
+  Eigen::VectorXd F;
+  predict_extended(m, rec, opt.sim, none, F, nullptr);
+  return F;
+}
+
+// Samples at the start of the record before the displacement leaves its
+// initial value by more than `tol`, when that value is near 0.
+size_t at_rest_prefix(const Record &rec, double tol, double xscale) {
+  if (std::fabs(rec.x[0]) > 0.01 * xscale) return 0;
+  size_t i = 0;
+  while (i < rec.x.size() && std::fabs(rec.x[i] - rec.x[0]) <= tol) ++i;
+  return i;
+}
+
+std::string offset_contradiction(const ExtModel &fitted, const std::vector<Record> &recs,
+                                 const std::vector<double> &sigma) {
+  double xscale = 0.0;
+  for (const Record &r : recs)
+    for (double x : r.x) xscale = std::max(xscale, std::fabs(x));
+  int checked = 0, contradicted = 0;
+  double worst = 0.0;
+  for (size_t k = 0; k < recs.size(); ++k) {
+    const Record &r = recs[k];
+    const double s = k < sigma.size() ? sigma[k] : 0.0;
+    const size_t n = at_rest_prefix(r, 1e-3 * xscale, xscale);
+    if (n < 10) continue;
+    double mean = 0.0;
+    for (size_t i = 0; i < n; ++i) mean += r.F[i];
+    mean /= (double)n;
+    ++checked;
+    // At rest at x = 0 the element's force is 0: the record's zero is `mean`.
+    const double tol = 3.0 * s / std::sqrt((double)n) + 0.5 * s;
+    if (std::fabs(mean - fitted.offset) > tol) {
+      ++contradicted;
+      worst = std::max(worst, mean);
+    }
+  }
+  if (checked == 0 || 2 * contradicted <= checked) return "";
+  char b[200];
+  std::snprintf(b, sizeof b,
+                "contradicted by the records' at-rest segments: %d of %d start at rest with a "
+                "measured zero of %.3g, not the fitted offset %.3g",
+                contradicted, checked, worst, fitted.offset);
+  return b;
+}
+
+std::string delay_contradiction(const ExtModel &fitted, const ExtModel &current,
+                                const std::vector<Record> &recs, const MisfitOptions &opt) {
+  double lag_sum = 0.0, w_sum = 0.0, dt = 0.0;
+  for (const Record &r : recs) {
+    const double h = (r.t.back() - r.t.front()) / (double)(r.t.size() - 1);
+    dt = std::max(dt, h);
+    const int max_lag = std::max(3, (int)std::ceil(3.0 * fitted.delay / h));
+    ExtModel m = current;
+    m.delay = 0.0;
+    const double lag = xcorr_lag(r, predict(m, r, opt), max_lag);
+    lag_sum += lag * (double)r.t.size();
+    w_sum += (double)r.t.size();
+  }
+  const double lag = w_sum > 0 ? lag_sum / w_sum : 0.0;
+  if (lag > 0.0 && std::fabs(lag - fitted.delay) <= std::max(0.5 * fitted.delay, 1.5 * dt)) return "";
+  char b[200];
+  std::snprintf(b, sizeof b,
+                "contradicted by the cross-correlation: the force lags the model by %.3g s, "
+                "not the fitted %.3g s",
+                lag, fitted.delay);
+  return b;
+}
+
+std::string slack_contradiction(const ExtModel &fitted, const std::vector<Record> &recs,
+                                const std::vector<double> &sigma, const MisfitOptions &opt) {
+  long floating = 0, total = 0, near_zero = 0;
+  for (size_t k = 0; k < recs.size(); ++k) {
+    const Record &r = recs[k];
+    const Eigen::VectorXd F = predict(fitted, r, opt);
+    double range = 0.0;
+    for (double f : r.F) range = std::max(range, std::fabs(f));
+    const double s = k < sigma.size() ? sigma[k] : 0.0;
+    for (size_t i = 0; i < r.F.size(); ++i) {
+      ++total;
+      if (std::fabs(F[(Eigen::Index)i] - fitted.offset) > 1e-9 * range) continue;
+      ++floating;
+      if (std::fabs(r.F[i] - fitted.offset) <= 5.0 * s + 0.02 * range) ++near_zero;
+    }
+  }
+  if (floating >= total / 200 && 2 * near_zero >= floating) return "";
+  char b[200];
+  std::snprintf(b, sizeof b,
+                "contradicted by the records: the fitted model floats free on %ld samples, the "
+                "measured force is near zero on %ld of them",
+                floating, near_zero);
+  return b;
+}
+
+}  // namespace
+
+double xcorr_lag(const Record &rec, const Eigen::VectorXd &F, int max_lag) {
+  const long n = (long)rec.F.size();
+  auto corr = [&](int lag) {  // sum F_meas[i] F_model[i - lag]
+    double s = 0.0;
+    for (long i = std::max<long>(0, lag); i < n && i - lag < n; ++i)
+      s += rec.F[(size_t)i] * F[(Eigen::Index)(i - lag)];
+    return s / (double)(n - std::abs(lag));
+  };
+  int best = 0;
+  double cb = corr(0);
+  for (int l = -max_lag; l <= max_lag; ++l) {
+    const double c = corr(l);
+    if (c > cb) { cb = c; best = l; }
+  }
+  double frac = 0.0;
+  if (best > -max_lag && best < max_lag) {
+    const double a = corr(best - 1), b = corr(best + 1);
+    const double den = a - 2.0 * cb + b;
+    if (den < 0.0) frac = 0.5 * (a - b) / den;
+  }
+  const double h = (rec.t.back() - rec.t.front()) / (double)(n - 1);
+  return (best + frac) * h;
+}
+
+std::string contradiction(const Candidate &c, const ExtModel &fitted, const ExtModel &current,
+                          const std::vector<Record> &recs, const std::vector<double> &sigma,
+                          const MisfitOptions &opt) {
+  if (c.offset) return offset_contradiction(fitted, recs, sigma);
+  if (c.delay) return delay_contradiction(fitted, current, recs, opt);
+  if (c.name == "slack") return slack_contradiction(fitted, recs, sigma, opt);
+  return "";
+}
+
+}  // namespace rtb

@@ -1,0 +1,143 @@
+// residual_signature.cpp -- what an unexplained residual looks like: its
+// spectral line (if any) against the input's content there, its trend over
+// time, and where in the loop it is largest. Reported with `unexplained`, so
+// the user can name what the vocabulary cannot.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "diagnose/diagnose.h"
+
+namespace rtb {
+
+namespace {
+
+struct Series {
+  std::vector<double> t, e, x, F;  // per record, concatenated with offsets
+  std::vector<size_t> starts;      // record boundaries
+};
+
+// Share of the energy of s (per record, mean removed) that one sinusoid of
+// frequency f explains (least squares per record).
+double sine_share(const Series &S, const std::vector<double> &s, double f) {
+  double explained = 0.0, total = 0.0;
+  for (size_t r = 0; r + 1 < S.starts.size(); ++r) {
+    const size_t a = S.starts[r], b = S.starts[r + 1];
+    double mean = 0.0;
+    for (size_t i = a; i < b; ++i) mean += s[i];
+    mean /= (double)(b - a);
+    double cc = 0, ss = 0, cs = 0, ec = 0, es = 0, ee = 0;
+    for (size_t i = a; i < b; ++i) {
+      const double w = 2.0 * M_PI * f * S.t[i], c = std::cos(w), sn = std::sin(w), v = s[i] - mean;
+      cc += c * c;
+      ss += sn * sn;
+      cs += c * sn;
+      ec += v * c;
+      es += v * sn;
+      ee += v * v;
+    }
+    const double det = cc * ss - cs * cs;
+    if (det > 0.0) explained += (ec * (ss * ec - cs * es) + es * (cc * es - cs * ec)) / det;
+    total += ee;
+  }
+  return total > 0.0 ? explained / total : 0.0;
+}
+
+// Share of e's energy a least-squares multiple of the feature g explains.
+double feature_share(const std::vector<double> &e, const std::vector<double> &g) {
+  double eg = 0, gg = 0, ee = 0;
+  for (size_t i = 0; i < e.size(); ++i) {
+    eg += e[i] * g[i];
+    gg += g[i] * g[i];
+    ee += e[i] * e[i];
+  }
+  return (gg > 0 && ee > 0) ? eg * eg / (gg * ee) : 0.0;
+}
+
+}  // namespace
+
+ResidualSignature residual_signature(const ExtModel &m, const std::vector<Record> &recs,
+                                     const std::vector<RecordResiduals> &where,
+                                     const MisfitOptions &opt) {
+  Series S;
+  ExtFitSpec none;
+  none.free.clear();
+  double fs = 0.0, T = 0.0;
+  for (const Record &rec : recs) {
+    Eigen::VectorXd F;
+    predict_extended(m, rec, opt.sim, none, F, nullptr);
+    S.starts.push_back(S.t.size());
+    const double t0 = rec.t.front(), dur = rec.t.back() - t0;
+    T = std::max(T, dur);
+    fs = std::max(fs, (double)(rec.t.size() - 1) / std::max(dur, 1e-300));
+    for (size_t i = 0; i < rec.t.size(); ++i) {
+      S.t.push_back(rec.t[i] - t0);
+      S.e.push_back(rec.F[i] - F[(Eigen::Index)i]);
+      S.x.push_back(rec.x[i]);
+      S.F.push_back(F[(Eigen::Index)i]);
+    }
+  }
+  S.starts.push_back(S.t.size());
+  ResidualSignature sig;
+  if (S.t.empty() || !(T > 0.0)) return sig;
+  // Strongest single line: a log grid from 3/T to the Nyquist frequency,
+  // then a local refinement (a hum's frequency is not on any grid).
+  const double f_lo = 3.0 / T, f_hi = 0.45 * fs;
+  double best_f = f_lo, best = -1.0;
+  const int n_grid = 160;
+  for (int k = 0; k < n_grid && f_hi > f_lo; ++k) {
+    const double f = f_lo * std::pow(f_hi / f_lo, k / (n_grid - 1.0));
+    const double sh = sine_share(S, S.e, f);
+    if (sh > best) { best = sh; best_f = f; }
+  }
+  double step = best_f * (std::pow(f_hi / f_lo, 1.0 / (n_grid - 1.0)) - 1.0);
+  for (int it = 0; it < 30 && step > 1e-6 * best_f; ++it, step *= 0.5)
+    for (double f : {best_f - step, best_f + step})
+      if (f > 0.0) {
+        const double sh = sine_share(S, S.e, f);
+        if (sh > best) { best = sh; best_f = f; }
+      }
+  sig.dominant_hz = best_f;
+  sig.dominant_share = std::max(0.0, best);
+  sig.input_share = sine_share(S, S.x, best_f);
+  // Slow trends: of the force (a + b t) and of the stiffness (t F_model).
+  std::vector<double> tt(S.t.size()), tF(S.t.size());
+  for (size_t i = 0; i < S.t.size(); ++i) {
+    tt[i] = S.t[i] - 0.5 * T;
+    tF[i] = tt[i] * S.F[i];
+  }
+  sig.trend_share = feature_share(S.e, tt);
+  sig.drift_share = feature_share(S.e, tF);
+  // Where in the loop (first record's quadrants, from the residual analysis).
+  static const char *const quad[4] = {"loading at x > 0", "unloading at x > 0",
+                                      "loading at x < 0", "unloading at x < 0"};
+  if (!where.empty()) {
+    const double *q = where.front().rms_quadrant;
+    const int k = (int)(std::max_element(q, q + 4) - q);
+    const double lo = *std::min_element(q, q + 4);
+    sig.where = q[k] > 1.5 * lo ? quad[k] : "evenly around the loop";
+  }
+  char b[300];
+  if (sig.dominant_share > 0.3 && sig.input_share < 0.05)
+    std::snprintf(b, sizeof b,
+                  "%.0f%% of it is a line at %.4g Hz where the displacement has no content "
+                  "(a disturbance on the force channel, e.g. mains hum or a machine vibration)",
+                  100 * sig.dominant_share, sig.dominant_hz);
+  else if (sig.drift_share > 0.3 && sig.drift_share > sig.trend_share)
+    std::snprintf(b, sizeof b,
+                  "it grows over time in proportion to the force (%.0f%% explained by t F): a "
+                  "drift of the stiffness, e.g. thermal",
+                  100 * sig.drift_share);
+  else if (sig.trend_share > 0.3)
+    std::snprintf(b, sizeof b, "a slow trend of the force over time (%.0f%% explained by a + b t)",
+                  100 * sig.trend_share);
+  else if (sig.dominant_share > 0.3)
+    std::snprintf(b, sizeof b, "%.0f%% of it at %.4g Hz, where the input has content too",
+                  100 * sig.dominant_share, sig.dominant_hz);
+  else
+    std::snprintf(b, sizeof b, "broadband, largest %s", sig.where.c_str());
+  sig.text = b;
+  return sig;
+}
+
+}  // namespace rtb

@@ -1,0 +1,247 @@
+// screen.cpp -- see screen.h.
+#include "diagnose/screen.h"
+
+#include <chrono>
+#include <cmath>
+
+#include "model/parallel_for.h"
+
+namespace rtb {
+
+namespace {
+
+// Weighted residuals of model m and the weighted sensitivity columns of
+// spec's free parameters, stacked over the records.
+struct Columns {
+  Eigen::VectorXd r;
+  Eigen::MatrixXd g;
+};
+Columns screen_columns(const ExtModel &m, const std::vector<Record> &recs, const MisfitOptions &opt,
+                       const ExtFitSpec &spec) {
+  std::vector<double> rv;
+  std::vector<Eigen::RowVectorXd> rows;
+  for (const Record &rec : recs) {
+    Eigen::VectorXd F;
+    Eigen::MatrixXd J;
+    predict_extended(m, rec, opt.sim, spec, F, &J);
+    const std::vector<double> w = quadrature_weights(rec, opt.fit_from);
+    for (size_t j = 0; j < rec.F.size(); ++j) {
+      if (!(w[j] > 0.0)) continue;
+      const double q = std::sqrt(w[j]);
+      rv.push_back(q * (F[(Eigen::Index)j] - rec.F[j]));
+      rows.push_back(q * J.row((Eigen::Index)j));
+    }
+  }
+  Columns c;
+  c.r = Eigen::Map<Eigen::VectorXd>(rv.data(), (Eigen::Index)rv.size());
+  c.g.resize(c.r.size(), rows.empty() ? 0 : rows[0].size());
+  for (size_t k = 0; k < rows.size(); ++k) c.g.row((Eigen::Index)k) = rows[k];
+  return c;
+}
+
+// Score test: the linearized least squares with the model's columns and the
+// candidate's together; the candidate's amplitude is the first of its
+// columns. *model_step receives the accompanying step of the model's
+// parameters.
+void joint_linear(const Columns &base, const Eigen::MatrixXd &g, CandidateScreen &s,
+                  Eigen::VectorXd *model_step = nullptr) {
+  const Eigen::Index m = base.r.size(), P = base.g.cols(), q = g.cols();
+  Eigen::MatrixXd A(m, P + q);
+  A << base.g, g;
+  const Eigen::VectorXd cs = A.colwise().norm().transpose().cwiseMax(1e-300);
+  const Eigen::MatrixXd As = A * cs.cwiseInverse().asDiagonal();
+  const Eigen::LDLT<Eigen::MatrixXd> ldlt(As.transpose() * As);
+  const Eigen::VectorXd th = -ldlt.solve(As.transpose() * base.r);
+  const Eigen::VectorXd res = base.r + As * th;
+  const double r2 = base.r.squaredNorm();
+  s.dJ = r2 > 0 ? 1.0 - res.squaredNorm() / r2 : 0.0;
+  s.value = th[P] / cs[P];
+  const double s2 = res.squaredNorm() / std::max(1.0, double(m - P - q));
+  const Eigen::VectorXd e = Eigen::VectorXd::Unit(P + q, P);
+  const double var = s2 * e.dot(ldlt.solve(e)) / (cs[P] * cs[P]);
+  s.z = var > 0 ? std::fabs(s.value) / std::sqrt(var) : 0.0;
+  if (model_step) *model_step = th.head(P).cwiseQuotient(cs.head(P));
+}
+
+// Move the core RT parameters by the linearized step that accompanies the
+// candidate's term (the model had bent them to absorb the effect), in log
+// coordinates and by at most +-50%.
+void apply_rt_step(const Eigen::VectorXd &d, rtb_params &p) {
+  const std::vector<ParamId> ids = core_params();
+  for (size_t i = 0; i < ids.size() && (Eigen::Index)i < d.size(); ++i) {
+    double &v = param_ref(p, ids[i]);
+    if (v <= 0.0) continue;
+    const double rel = std::max(-0.5, std::min(0.5, d[(Eigen::Index)i] / v));
+    v *= std::exp(rel);
+  }
+  // alpha stays inside the admissible range (a model at the floor
+  // RTB_ALPHA_MIN, friction-like, must not be stepped below it).
+  p.alpha = std::max(std::min(p.alpha, 0.95), 1.01 * RTB_ALPHA_MIN);
+}
+
+// Starting gaps of the clearance screens, as fractions of the stroke: a
+// clearance much wider than the first is a different basin (a friction
+// device with a 10%-of-stroke play, e.g.). Each start is its own job.
+constexpr double kFloatStarts[] = {0.02, 0.1};
+constexpr double kHeldStarts[] = {0.03};
+
+struct Job {
+  size_t cand;
+  int variant;
+};
+
+// Scan a shape parameter on a grid with the amplitude linear; keep the best
+// positive amplitude.
+template <class Set>
+CandidateScreen scan_shape(const ExtModel &m, const Columns &base, const std::vector<Record> &recs,
+                           const MisfitOptions &opt, ParamId amplitude,
+                           const std::vector<double> &grid, Set set_shape) {
+  CandidateScreen s;
+  s.start = m;
+  ExtFitSpec one;
+  one.free = {amplitude};
+  bool any = false;
+  for (double g : grid) {
+    ExtModel t = m;
+    set_shape(t.p, g);
+    CandidateScreen c;
+    Eigen::VectorXd step;
+    joint_linear(base, screen_columns(t, recs, opt, one).g, c, &step);
+    if (c.value > 0.0 && (!any || c.dJ > s.dJ)) {
+      s = c;
+      s.start = t;
+      apply_rt_step(step, s.start.p);
+      any = true;
+    }
+  }
+  s.plausible = any;
+  return s;
+}
+
+// A short joint fit (clearance, slack): not differentiable in the switch.
+CandidateScreen short_fit(const Candidate &c, const ExtModel &start, const ExtFitSpec &spec,
+                          const Columns &base, const std::vector<Record> &recs,
+                          const MisfitOptions &opt, const DataScales &sc) {
+  ExtFitSpec one = combined_spec({c}, sc);
+  one.free = spec.free;
+  for (ParamId id : c.extra) one.free.push_back(id);
+  one.fit_delay = spec.fit_delay;
+  one.fit_offset = spec.fit_offset;
+  one.max_iter = 6;
+  const ExtFitResult f = fit_extended(recs, start, one, opt);
+  CandidateScreen s;
+  const double r2 = base.r.squaredNorm();
+  s.dJ = r2 > 0 ? std::max(0.0, 1.0 - f.J / (0.5 * r2)) : 0.0;
+  s.start = f.model;
+  if (c.extra.empty()) {  // a switch: likelihood-ratio significance
+    const double m = (double)std::max<long>(1, f.samples);
+    s.value = 1.0;
+    s.z = s.dJ > 0 ? std::sqrt(std::max(0.0, -m * std::log(1.0 - s.dJ))) : 0.0;
+    return s;
+  }
+  const Eigen::Index gi = (Eigen::Index)spec.free.size();
+  s.value = param_get(f.model.p, c.extra[0]);
+  s.z = f.stddev_valid && f.stddev[gi] > 0 ? s.value / f.stddev[gi] : 0.0;
+  return s;
+}
+
+CandidateScreen screen_one(const Candidate &c, int variant, const ExtModel &m,
+                           const ExtFitSpec &spec, const Columns &base,
+                           const std::vector<Record> &recs, const MisfitOptions &opt,
+                           const DataScales &sc) {
+  ExtModel m0 = m;
+  if (c.configure) c.configure(m0.p, sc);
+  if (c.name == "maxwell")
+    return scan_shape(m0, base, recs, opt, P_maxwell_k, {0.003, 0.01, 0.03, 0.1, 0.3, 1.0},
+                      [&](rtb_params &p, double f) {
+                        p.maxwell_tau = std::max(f * sc.duration, 5.0 * sc.dt);
+                      });
+  if (c.name == "softening")
+    return scan_shape(m0, base, recs, opt, P_sat_force, {0.03, 0.1, 0.3, 1.0},
+                      [&](rtb_params &p, double f) { p.sat_disp = f * sc.Xmax; });
+  if (c.name == "relaxation_spectrum")
+    return scan_shape(m0, base, recs, opt, P_spec_k, {-0.3, 0.0, 0.3, 0.6},
+                      [&](rtb_params &p, double b) { p.spec_exp = b; });
+  if (c.name == "backlash") {
+    m0.p.backlash = (c.variant == "held" ? kHeldStarts : kFloatStarts)[variant] * sc.Xmax;
+    return short_fit(c, m0, spec, base, recs, opt, sc);
+  }
+  if (c.name == "slack") return short_fit(c, m0, spec, base, recs, opt, sc);
+
+  CandidateScreen s;
+  ExtFitSpec one;
+  one.free = c.extra;
+  one.fit_delay = c.delay;
+  one.fit_offset = c.offset;
+  Eigen::VectorXd step;
+  joint_linear(base, screen_columns(m0, recs, opt, one).g, s, &step);
+  s.start = m0;
+  apply_rt_step(step, s.start.p);
+  if (!c.extra.empty()) {
+    const ParamId id = c.extra[0];
+    const bool positive = id == P_viscous_c || id == P_mass || id == P_mullins;
+    s.plausible = !positive || s.value > 0.0;
+    double v = s.value;
+    // A wrong-signed screen (the model absorbed part of the effect) still
+    // gets a joint fit if it ranks high, from a default positive size.
+    if (id == P_mullins && v > 0.0) v = std::min(v, 0.9);
+    if (id == P_fric_asym) v = std::max(-0.9, std::min(0.9, v));
+    if (id == P_k_asym) v = std::max(-0.9 * s.start.p.K0, std::min(0.9 * s.start.p.K0, v));
+    if (positive && !(v > 0.0)) v = extra_start_value(id, sc);
+    param_ref(s.start.p, id) = v;
+  }
+  if (c.delay) {
+    s.plausible = s.value > 0.0;  // the force channel lags, by definition
+    s.start.delay = s.value > 0.0 ? s.value : 2.0 * sc.dt;
+  }
+  if (c.offset) s.start.offset = m.offset + s.value;
+  return s;
+}
+
+}  // namespace
+
+std::vector<CandidateScreen> screen_candidates(const std::vector<Candidate> &cands,
+                                               const ExtModel &m, const ExtFitSpec &spec,
+                                               const std::vector<Record> &recs,
+                                               const MisfitOptions &opt, const DataScales &sc,
+                                               int threads) {
+  // Jobs (candidate, variant), the long clearance and slack fits first.
+  std::vector<Job> jobs;
+  for (size_t i = 0; i < cands.size(); ++i) {
+    const Candidate &c = cands[i];
+    int variants = 1;
+    if (c.name == "backlash")
+      variants = c.variant == "held" ? (int)std::size(kHeldStarts) : (int)std::size(kFloatStarts);
+    const bool slow = c.name == "backlash" || c.name == "slack";
+    for (int v = 0; v < variants; ++v) {
+      if (slow) jobs.insert(jobs.begin(), {i, v});
+      else jobs.push_back({i, v});
+    }
+  }
+  const Columns base = screen_columns(m, recs, opt, spec);
+  std::vector<CandidateScreen> per_job(jobs.size());
+  parallel_for(jobs.size(), threads, [&](size_t k) {
+    const auto t1 = std::chrono::steady_clock::now();
+    try {
+      per_job[k] = screen_one(cands[jobs[k].cand], jobs[k].variant, m, spec, base, recs, opt, sc);
+    } catch (const std::exception &) {
+      per_job[k] = CandidateScreen();  // a failed screen ranks last
+      per_job[k].start = m;
+    }
+    per_job[k].seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
+  });
+  // A candidate's screen is its best variant (largest misfit reduction).
+  std::vector<CandidateScreen> out(cands.size());
+  std::vector<bool> have(cands.size(), false);
+  for (size_t k = 0; k < jobs.size(); ++k) {
+    CandidateScreen &s = out[jobs[k].cand];
+    const double spent = s.seconds + per_job[k].seconds;
+    if (!have[jobs[k].cand] || per_job[k].dJ > s.dJ) s = per_job[k];
+    s.seconds = spent;
+    have[jobs[k].cand] = true;
+  }
+  return out;
+}
+
+}  // namespace rtb

@@ -1,0 +1,207 @@
+// new_extensions_test.cpp -- issue #10's extensions of the element against
+// closed forms: the relaxation spectrum's exact branch response, the friction
+// asymmetry's steady-creep overstress, a held clearance's static limit and a
+// slack specimen that never pushes. The adjoint of each is checked in
+// adjoint_test.cpp; validation and JSON round trips in io_test.cpp.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "rt_bushing.h"
+
+namespace {
+
+rtb_params rt_default() {
+  rtb_params p;
+  rtb_params_default(&p, RTB_MODEL_RT);
+  return p;
+}
+
+// Force history for a displacement history x(t_i), t_i = i dt.
+std::vector<double> run(const rtb_params &p, const std::vector<double> &x, double dt,
+                        rtb_state *end = nullptr) {
+  rtb_state s;
+  EXPECT_EQ(rtb_state_init(&s, &p, 0.0), RTB_OK);
+  std::vector<double> F(x.size(), 0.0);
+  for (size_t i = 1; i < x.size(); ++i) EXPECT_GE(rtb_step(&s, &p, nullptr, x[i], dt, &F[i]), 0);
+  if (end) *end = s;
+  return F;
+}
+
+}  // namespace
+
+// The spectrum adds sum_j k_j (x - z_j) to the force without touching the
+// cells; for a ramp to x0 over one step then a hold, each branch is known in
+// closed form: z_j(dt) = x0 - x0 tau_j/dt (1 - e^{-dt/tau_j}), then it decays
+// towards x0 with e^{-(t-dt)/tau_j}.
+TEST(RelaxationSpectrum, StepResponseIsTheExactSumOfBranches) {
+  rtb_params p = rt_default();
+  rtb_params q = p;
+  q.spec_k = 500.0;
+  q.spec_exp = 0.4;
+  q.spec_tau_min = 1e-3;
+  q.spec_tau_max = 10.0;  // four decades: 9 branches
+  ASSERT_EQ(rtb_params_validate(&q), RTB_OK);
+  const double dt = 1e-3, x0 = 0.5;
+  std::vector<double> x(3001, x0);
+  x[0] = 0.0;
+  const std::vector<double> F0 = run(p, x, dt), F1 = run(q, x, dt);
+  // Branch layout: log-spaced, two per decade, weights tau^-beta normalized.
+  const int M = 9;
+  double w[M], tau[M], sum = 0.0;
+  for (int j = 0; j < M; ++j) {
+    tau[j] = 1e-3 * std::pow(10.0, j / 2.0);
+    w[j] = std::pow(tau[j], -q.spec_exp);
+    sum += w[j];
+  }
+  for (size_t i : {1u, 2u, 10u, 100u, 1000u, 3000u}) {
+    const double t = i * dt;
+    double expect = 0.0;
+    for (int j = 0; j < M; ++j) {
+      const double z1 = x0 - x0 * tau[j] / dt * (1.0 - std::exp(-dt / tau[j]));
+      const double z = x0 - (x0 - z1) * std::exp(-(t - dt) / tau[j]);
+      expect += q.spec_k * w[j] / sum * (x0 - z);
+    }
+    EXPECT_NEAR(F1[i] - F0[i], expect, 1e-9 * q.spec_k * x0) << "t = " << t;
+  }
+  // Long memory: at t = 3 s the slow branches still hold a visible force.
+  EXPECT_GT(F1[3000] - F0[3000], 0.01 * q.spec_k * x0);
+}
+
+// Steady creep under x = v t: each DOF y_k of eq. (2) follows the static
+// profile y_k = s_k x (K s = Kpa e1) at velocity v s_k plus a constant lag
+// delta with K delta = -f, f_k = C0 (1 +- a) (v s_k)^alpha. The force then
+// exceeds the static one by Kpa (K^-1 f)_1 -- larger in the direction of the
+// stronger dashpot by exactly (1 + a)/(1 - a). K is solved here by its own
+// Thomas sweep, independent of the stepper.
+std::vector<double> chain_solve(const rtb_params &p, std::vector<double> r) {
+  const int n = p.cells;
+  std::vector<double> c(n), d(n);
+  for (int k = 0; k < n; ++k) {
+    const double di = k == 0 ? p.Kpa + p.Kr : 2.0 * p.Kr, lo = k > 0 ? -p.Kr : 0.0;
+    const double den = di - lo * (k > 0 ? c[k - 1] : 0.0);
+    c[k] = -p.Kr / den;
+    d[k] = (r[k] - lo * (k > 0 ? d[k - 1] : 0.0)) / den;
+  }
+  for (int k = n - 2; k >= 0; --k) d[k] -= c[k] * d[k + 1];
+  return d;
+}
+
+TEST(FrictionAsymmetry, SteadyCreepOverstressClosedForm) {
+  rtb_params p = rt_default();
+  p.fric_asym = 0.4;
+  p.alpha = 0.6;  // a chain that settles into steady creep within the record
+  ASSERT_EQ(rtb_params_validate(&p), RTB_OK);
+  const double v = 0.5, dt = 1e-3;  // mm/s
+  const int n = 20000;              // 20 s
+  std::vector<double> e1(p.cells, 0.0);
+  e1[0] = p.Kpa;
+  const std::vector<double> s = chain_solve(p, e1);
+  double over[2];
+  for (int d = 0; d < 2; ++d) {
+    const double dir = d == 0 ? 1.0 : -1.0;
+    std::vector<double> x(n + 1);
+    for (int i = 0; i <= n; ++i) x[i] = dir * v * i * dt;
+    const std::vector<double> F = run(p, x, dt);
+    std::vector<double> f(p.cells);
+    for (int k = 0; k < p.cells; ++k)
+      f[k] = p.C0 * (1.0 + dir * p.fric_asym) * std::pow(v * s[k], p.alpha);
+    const double expect = p.Kpa * chain_solve(p, f)[0];
+    over[d] = dir * (F[n] - rtb_static_force(&p, x[n]));
+    EXPECT_NEAR(over[d], expect, 2e-3 * expect) << "direction " << dir;
+  }
+  EXPECT_NEAR(over[0] / over[1], 1.4 / 0.6, 1e-2);
+}
+
+// A held clearance: after contact the end stays where it was inside the gap,
+// and the force relaxes to the static force at that frozen position.
+TEST(HeldBacklash, FrozenEndRelaxesToStaticForce) {
+  rtb_params p = rt_default();
+  p.backlash = 0.2;
+  p.backlash_held = 1;
+  p.alpha = 0.8;  // relaxes within the hold (alpha = 0.2 would take hours)
+  ASSERT_EQ(rtb_params_validate(&p), RTB_OK);
+  const double dt = 1e-3;
+  std::vector<double> x;
+  for (int i = 0; i <= 500; ++i) x.push_back(1.0 * i / 500.0);   // push to 1 mm: contact at x - g/2
+  for (int i = 1; i <= 20; ++i) x.push_back(1.0 - 0.1 * i / 20.0);  // back 0.1 mm: inside the gap
+  const size_t turn = x.size();
+  for (int i = 0; i < 30000; ++i) x.push_back(0.9);                // hold 30 s inside the gap
+  rtb_state s;
+  const std::vector<double> F = run(p, x, dt, &s);
+  EXPECT_EQ(s.contact, 3);
+  EXPECT_DOUBLE_EQ(s.xb, 1.0 - 0.5 * p.backlash);  // frozen at the last contact position
+  EXPECT_GT(F[turn], 1.02 * rtb_static_force(&p, s.xb));  // still relaxing after the reversal
+  EXPECT_NEAR(F.back(), rtb_static_force(&p, s.xb), 1e-4 * F.back());
+}
+
+// A slack specimen never pushes: from rest, compression gives zero force;
+// in tension it is the plain element until the plain element would push.
+TEST(Slack, NeverPushesAndMatchesPlainElementWhileTaut) {
+  rtb_params plain = rt_default();
+  rtb_params p = plain;
+  p.slack = 1;
+  ASSERT_EQ(rtb_params_validate(&p), RTB_OK);
+  const double dt = 1e-3;
+  std::vector<double> x;
+  for (int i = 0; i <= 2000; ++i) x.push_back(2.0 * std::sin(2 * M_PI * 1.0 * i * dt));
+  rtb_state s;
+  const std::vector<double> F = run(p, x, dt, &s), Fp = run(plain, x, dt);
+  double most_negative = 0.0;
+  int slack_steps = 0;
+  const double tiny = 1e-9 * 2.0 * (p.K0 + p.Kpa);  // the free end's root, solved to rounding
+  for (size_t i = 1; i < x.size(); ++i) {
+    most_negative = std::fmin(most_negative, F[i]);
+    slack_steps += std::fabs(F[i]) <= tiny;
+  }
+  EXPECT_GE(most_negative, -tiny);
+  EXPECT_GT(slack_steps, 800);  // the compressive halves and the unloading tails
+  // Until the plain element first pushes, the specimen is the plain element.
+  size_t i = 1;
+  for (; i < x.size() && Fp[i] > 0.0; ++i) EXPECT_EQ(F[i], Fp[i]) << i;
+  EXPECT_GT(i, 300u);
+  // Second cycle: taut again only once the input has caught up with the
+  // floating end (xb >= x while slack).
+  EXPECT_GT(F[1250], 0.0);
+  // From rest, pure compression: always zero force.
+  std::vector<double> xc;
+  for (int k = 0; k <= 200; ++k) xc.push_back(-0.001 * k);
+  for (double f : run(p, xc, dt)) EXPECT_LE(std::fabs(f), tiny);
+}
+
+TEST(NewExtensions, ValidationNamesTheField) {
+  rtb_params p = rt_default();
+  const char *field = nullptr;
+  p.slack = 0.5;
+  EXPECT_EQ(rtb_params_check(&p, &field), RTB_ERR_PARAM_RANGE);
+  EXPECT_STREQ(field, "slack");
+  p = rt_default();
+  p.fric_asym = 1.0;
+  EXPECT_EQ(rtb_params_check(&p, &field), RTB_ERR_PARAM_RANGE);
+  EXPECT_STREQ(field, "fric_asym");
+  p = rt_default();
+  p.spec_k = 10;
+  EXPECT_EQ(rtb_params_check(&p, &field), RTB_ERR_PARAM_RANGE);
+  EXPECT_STREQ(field, "spec_tau_min");
+  p.spec_tau_min = 1.0;
+  p.spec_tau_max = 0.5;
+  EXPECT_EQ(rtb_params_check(&p, &field), RTB_ERR_PARAM_RANGE);
+  EXPECT_STREQ(field, "spec_tau_max");
+  p = rt_default();
+  p.Kpa = -1;
+  EXPECT_EQ(rtb_params_check(&p, &field), RTB_ERR_PARAM_RANGE);
+  EXPECT_STREQ(field, "Kpa");
+  p = rt_default();
+  EXPECT_EQ(rtb_params_check(&p, &field), RTB_OK);
+  EXPECT_STREQ(field, "");
+  p.slack = 1;
+  p.backlash = 0.1;
+  p.backlash_held = 1;
+  EXPECT_EQ(rtb_params_check(&p, &field), RTB_ERR_PARAM_RANGE);
+  EXPECT_STREQ(field, "backlash_held");
+  rtb_params_default(&p, RTB_MODEL_STS);
+  p.fric_asym = 0.2;
+  EXPECT_EQ(rtb_params_check(&p, &field), RTB_ERR_PARAM_RANGE);
+  EXPECT_STREQ(field, "fric_asym");
+}
