@@ -94,18 +94,20 @@ for c in $cases; do
   args=()
   for f in "$dir"/fit_*.csv; do args+=(--data "$f"); done
   for f in "$dir"/holdout_*.csv; do args+=(--holdout "$f"); done
-  t0=$(date +%s.%N)
   status=ok
-  timeout --kill-after=10 "$timeout_s" "$rtb" diagnose "${args[@]}" --out "$dir/report.json" \
-    ${extra[@]+"${extra[@]}"} > "$dir/diagnose.log" 2>&1 || {
+  # Wall and CPU (user + system) seconds: on a shared machine CPU is the steadier figure.
+  TIMEFORMAT='%R %U %S'
+  { time timeout --kill-after=10 "$timeout_s" "$rtb" diagnose "${args[@]}" --out "$dir/report.json" \
+      ${extra[@]+"${extra[@]}"} > "$dir/diagnose.log" 2>&1 ; } 2> "$dir/time.txt" || {
       rc=$?
       if [ $rc -eq 124 ] || [ $rc -eq 137 ]; then status=timeout; else status="exit$rc"; fi
       failed=1
     }
-  wall=$(awk -v a="$t0" -v b="$(date +%s.%N)" 'BEGIN { printf "%.1f", b - a }')
-  python3 "$here/score.py" row "$name" "$dir/truth.json" "$dir/report.json" "$wall" "$status" >> "$results"
+  wall=$(awk '{ printf "%.1f", $1 }' "$dir/time.txt")
+  cpu=$(awk '{ printf "%.1f", $2 + $3 }' "$dir/time.txt")
+  python3 "$here/score.py" row "$name" "$dir/truth.json" "$dir/report.json" "$wall" "$cpu" "$status" >> "$results"
   [ $keep -eq 1 ] || rm -f "$dir"/*.csv
-  tail -n 1 "$results" | python3 -c 'import json,sys; r=json.loads(sys.stdin.read()); print("  %-30s -> %-20s %s (%.0f s)" % (r["case"], r["cause"], "ok" if r["ok"] else "MISS", r["wall_s"]))'
+  tail -n 1 "$results" | python3 -c 'import json,sys; r=json.loads(sys.stdin.read()); print("  %-30s -> %-20s %s (%.0f s, cpu %.0f s)" % (r["case"], r["cause"], "ok" if r["ok"] else "MISS", r["wall_s"], r["cpu_s"]))'
 done
 python3 "$here/score.py" table "$results" | tee "$out/table.txt"
 echo "load after the run: $(uptime)"

@@ -2,7 +2,7 @@
 """score.py -- scoring of `rtb diagnose` reports against refgen truth, for
 tests/refgen/acceptance.sh.
 
-  score.py row CASE TRUTH_JSON REPORT_JSON WALL_S STATUS >> results.jsonl
+  score.py row CASE TRUTH_JSON REPORT_JSON WALL_S CPU_S STATUS >> results.jsonl
   score.py table results.jsonl
 
 Verdict rules (issue #10):
@@ -67,10 +67,10 @@ def number(d, *keys):
     return d if isinstance(d, (int, float)) else None
 
 
-def row(case, truth_path, report_path, wall, status):
+def row(case, truth_path, report_path, wall, cpu, status):
     truth = json.load(open(truth_path))
     effects, expected = truth["effects"], truth["expected"]
-    r = {"case": case, "category": category(effects), "expected": expected, "wall_s": float(wall),
+    r = {"case": case, "category": category(effects), "expected": expected, "wall_s": float(wall), "cpu_s": float(cpu),
          "status": status, "noise_floor_holdout": truth.get("noise_floor_holdout")}
     try:
         report = json.load(open(report_path))
@@ -93,32 +93,34 @@ def pct(v):
 
 def table(path):
     rows = [json.loads(line) for line in open(path) if line.strip()]
-    head = "%-30s %-26s %-30s %-4s %7s %7s %7s %7s %7s" % (
-        "case", "expected", "named (cause; causes)", "ok", "base%", "ext%", "floor%", "tool%", "wall s")
+    head = "%-30s %-26s %-30s %-4s %7s %7s %7s %7s %7s %7s" % (
+        "case", "expected", "named (cause; causes)", "ok", "base%", "ext%", "floor%", "tool%", "wall s",
+        "cpu s")
     print(head)
     print("-" * len(head))
     for r in rows:
         named = r["cause"] + ("; " + ",".join(r["names"]) if r["names"] and r["names"] != [r["cause"]] else "")
-        print("%-30s %-26s %-30s %-4s %7s %7s %7s %7s %7.1f" % (
+        print("%-30s %-26s %-30s %-4s %7s %7s %7s %7s %7.1f %7.1f" % (
             r["case"], ",".join(r["expected"]), named, "yes" if r["ok"] else "NO",
             pct(r.get("base")), pct(r.get("ext")), pct(r.get("noise_floor_holdout")),
-            pct(r.get("tool_floor")), r["wall_s"]))
+            pct(r.get("tool_floor")), r["wall_s"], r.get("cpu_s", float("nan"))))
     def score(cats):
         sel = [r for r in rows if r["category"] in cats]
         return "%d/%d" % (sum(r["ok"] for r in sel), len(sel))
     wrong = sum(1 for r in rows if r["wrong"])
     wall = sum(r["wall_s"] for r in rows)
+    cpu = sum(r.get("cpu_s", 0.0) for r in rows)
     print("-" * len(head))
     print("single: %s, combined/new/out-of-vocabulary: %s, plain: %s, wrong physical names: %d"
-          " (cases with a named word not expected); total wall %.0f s" % (
-              score({"single"}), score({"combined", "new", "oov"}), score({"plain"}), wrong, wall))
+          " (cases with a named word not expected); total wall %.0f s, cpu %.0f s" % (
+              score({"single"}), score({"combined", "new", "oov"}), score({"plain"}), wrong, wall, cpu))
     print("base%/ext%: held-out error (eq. 27) of plain RT and of the extended model; "
           "floor%: refgen's force-noise floor on the held-out records; tool%: the noise floor "
           "the diagnosis estimated (when it reports one)")
 
 
 if __name__ == "__main__":
-    if len(sys.argv) == 7 and sys.argv[1] == "row":
+    if len(sys.argv) == 8 and sys.argv[1] == "row":
         row(*sys.argv[2:])
     elif len(sys.argv) == 3 and sys.argv[1] == "table":
         table(sys.argv[2])
