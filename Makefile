@@ -6,6 +6,8 @@
 #   make report   build, then run `build/rtb report`
 #   make fuzz     libFuzzer targets (clang-14) for FUZZ_SECONDS each, in build-fuzz/
 #   make fmu      build/fmu/rt_bushing.fmu, FMI 2.0 co-simulation (PARAMS=FILE: a specific bushing)
+#   make acceptance  build, then `rtb diagnose` on records of the independent
+#                 generator tests/refgen (table in build/acceptance/table.txt)
 #   make clean    remove the build trees
 # Every target except clean first checks the Debian packages it needs (deps).
 
@@ -30,7 +32,7 @@ DEB_PACKAGES := cmake g++ make libgtest-dev libbenchmark-dev libeigen3-dev \
 FUZZ_PACKAGES := cmake make clang-14 libfuzzer-14-dev nlohmann-json3-dev
 
 .PHONY: all deps fuzz-deps configure build test test-release check-symbols test-asan \
-        demo bench report fuzz fmu clean
+        demo bench report fuzz fmu acceptance clean
 
 all: build
 
@@ -114,6 +116,13 @@ report: build
 	  echo "  It holds the friction-damper and VHB 4910 records (see docs/results/ for what they give)."; \
 	  echo "  Put it there or run: make report DATA_DIR=/path/to/data"; exit 1; fi
 	./$(BUILD)/rtb report --data-dir "$(DATA_DIR)" --out-dir docs/results
+
+# `rtb diagnose` scored on records from the independent reference generator
+# (tests/refgen/acceptance.sh; issue #10). 10-60 s per case: the quick set
+# takes 10-20 min; ACCEPT_ARGS="--set all" runs every word on two seeds.
+ACCEPT_ARGS ?= --set quick
+acceptance: build
+	bash tests/refgen/acceptance.sh --build $(BUILD) $(ACCEPT_ARGS)
 
 bench: build
 	@if [ ! -x $(BUILD)/bench/rtb_bench ]; then echo "$(BUILD)/bench/rtb_bench was not built (no bench/*_bench.cpp?)"; exit 1; fi
