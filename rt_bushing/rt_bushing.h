@@ -29,9 +29,10 @@
  * bytes (checked at build time with GCC's -Wstack-usage, see CMakeLists.txt),
  * and the deepest call chain (rtb_evaluate with a clearance: API -> step ->
  * clearance -> response -> chain advance -> stage solve -> dashpot law) uses
- * at most RTB_STACK_DEPTH_MAX bytes in an optimised x86-64 build (measured
- * 8.9 KiB at -O3, 10.7 KiB at -O2 by tests/step_info_test.cpp, which paints
- * a thread's stack; sanitizer and -O0 builds use more). Reserve at least
+ * at most RTB_STACK_DEPTH_MAX bytes in an optimised x86-64 build (the
+ * single-axis chain measured 10.4 KiB at -O3, 12.2 KiB at -O2 by
+ * tests/step_info_test.cpp, which paints a thread's stack; rtb_bushing6_*
+ * adds its own frame; sanitizer and -O0 builds use more). Reserve at least
  * that much for a real-time thread that calls the library.
  */
 #ifndef RT_BUSHING_H
@@ -51,10 +52,11 @@ extern "C" {
 #define RTB_API
 #endif
 
-#define RTB_STACK_FRAME_MAX 6144   /* bytes, per function (-Wstack-usage); the largest is
-                                      rtb_step_core (~4.3 KiB: two stage records, the
-                                      new state, the spectrum layout) */
-#define RTB_STACK_DEPTH_MAX 16384  /* bytes, deepest call chain */
+#define RTB_STACK_FRAME_MAX 8192   /* bytes, per function (-Wstack-usage); the largest are
+                                      rtb_bushing6_init/step (~6.4 KiB: six axis states)
+                                      and rtb_step_core (~4.3 KiB) */
+#define RTB_STACK_DEPTH_MAX 24576  /* bytes, deepest call chain (rtb_bushing6_step:
+                                      its frame + one axis' rtb_step chain) */
 
 /* ------------------------------------------------------------------ */
 /* Types                                                               */
@@ -392,24 +394,24 @@ typedef struct rtb_bushing6_state {
  * *bad_axis (or -1 when the failure is not an axis's); bad_axis may be NULL. */
 
 /* Every axis on, each with rtb_params_default(model). */
-rtb_status rtb_bushing6_params_default(rtb_bushing6_params *p, int model);
+RTB_API rtb_status rtb_bushing6_params_default(rtb_bushing6_params *p, int model);
 /* active[] must be 0 or 1 (RTB_ERR_MODEL); each active axis must validate. */
-rtb_status rtb_bushing6_validate(const rtb_bushing6_params *p, int *bad_axis);
+RTB_API rtb_status rtb_bushing6_validate(const rtb_bushing6_params *p, int *bad_axis);
 /* Relaxed state at displacements x0[6] (NULL: all zero). */
-rtb_status rtb_bushing6_init(rtb_bushing6_state *s, const rtb_bushing6_params *p,
+RTB_API rtb_status rtb_bushing6_init(rtb_bushing6_state *s, const rtb_bushing6_params *p,
                              const rtb_real x0[RTB_AXES], int *bad_axis);
 /* Trial step of every axis to x[6] over dt: forces into force[6] and the
  * diagonal of the 6x6 tangent dF/dx into dforce_dx[6] (may be NULL). `s` is
  * never touched; `trial` (may not alias `s`) is complete only on success.
  * The status is the first error, else RTB_NOT_CONVERGED if any axis warned. */
-rtb_status rtb_bushing6_evaluate(const rtb_bushing6_state *s, const rtb_bushing6_params *p,
+RTB_API rtb_status rtb_bushing6_evaluate(const rtb_bushing6_state *s, const rtb_bushing6_params *p,
                                  const rtb_settings *set, const rtb_real x[RTB_AXES],
                                  rtb_real dt, rtb_bushing6_state *trial,
                                  rtb_real force[RTB_AXES], rtb_real dforce_dx[RTB_AXES],
                                  int *bad_axis);
-rtb_status rtb_bushing6_commit(rtb_bushing6_state *s, const rtb_bushing6_state *trial);
+RTB_API rtb_status rtb_bushing6_commit(rtb_bushing6_state *s, const rtb_bushing6_state *trial);
 /* evaluate + commit: on error (< 0) neither *s nor force[] is written. */
-rtb_status rtb_bushing6_step(rtb_bushing6_state *s, const rtb_bushing6_params *p,
+RTB_API rtb_status rtb_bushing6_step(rtb_bushing6_state *s, const rtb_bushing6_params *p,
                              const rtb_settings *set, const rtb_real x[RTB_AXES], rtb_real dt,
                              rtb_real force[RTB_AXES], int *bad_axis);
 /* "x", "y", "z", "rx", "ry", "rz" (NULL outside 0..5). */
