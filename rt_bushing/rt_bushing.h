@@ -46,10 +46,13 @@ extern "C" {
 
 /* Exported functions. The library is built with -fvisibility=hidden: only
  * the functions marked RTB_API are visible outside a shared build. */
+#ifndef RTB_API /* a host that links the sources into its own binary (the FMU) may
+                   define it empty to keep every rtb_ symbol internal */
 #if defined(__GNUC__)
 #define RTB_API __attribute__((visibility("default")))
 #else
 #define RTB_API
+#endif
 #endif
 
 #define RTB_STACK_FRAME_MAX 8192   /* bytes, per function (-Wstack-usage); the largest are
