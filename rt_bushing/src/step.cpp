@@ -65,14 +65,13 @@ static void stage_tangent(const rtb_params *p, const rtb_stage *st, const double
   const int n = p->cells;
   if (n < 1 || n > RTB_MAX_CELLS) return;
   double lo[RTB_MAX_CELLS], di[RTB_MAX_CELLS], up[RTB_MAX_CELLS], work[RTB_MAX_CELLS];
+  double D[RTB_MAX_CELLS];
   for (int k = 0; k < n; ++k) {
-    const double D = rtb_dashpot_dvdf(st->f[k], st->v[k], rtb_dashpot_level(p->C0, p->fric_asym, st->f[k]),
-                                      p->alpha, p->smoothing);
-    di[k] = 1.0 + st->h * D * rtb_chain_diag(k, p->Kpa, p->Kr);
-    lo[k] = k > 0 ? -st->h * D * p->Kr : 0.0;
-    up[k] = k + 1 < n ? -st->h * D * p->Kr : 0.0;
-    dy[k] = (dc ? dc[k] : 0.0) + (k == 0 ? st->h * D * db1 : 0.0);
+    D[k] = rtb_dashpot_dvdf(st->f[k], st->v[k], rtb_dashpot_level(p->C0, p->fric_asym, st->f[k]),
+                            p->alpha, p->smoothing);
+    dy[k] = (dc ? dc[k] : 0.0) + (k == 0 ? st->h * D[k] * db1 : 0.0);
   }
+  rtb_stage_matrix(n, st->h, D, p->Kpa, p->Kr, 0, lo, di, up);
   rtb_tridiag_solve(n, lo, di, up, dy, work);
 }
 
