@@ -75,7 +75,8 @@ TEST(IndependentDiagnose, DISABLED_HeldClearanceIsBacklash) {
 }
 
 // A strip that cannot push goes slack near the end of unloading (issue #10,
-// item 6). Before the rewrite the word did not exist (8 s records: `mullins`).
+// item 6). Before the rewrite the word did not exist (8 s records: `mullins`);
+// after it (merged main ea9ffc1): `slack`, passes.
 TEST(IndependentDiagnose, DISABLED_SlackStripIsSlack) {
   const Diagnosed d = diagnose_refgen("slack", 1);
   EXPECT_EQ(d.R.cause, "slack") << d.R.verdict;
