@@ -5,8 +5,8 @@
 // parameters and sample rates). Short records (4 s) so each case stays cheap;
 // the full sweep is tests/refgen/acceptance.sh.
 //
-// Cases the current diagnosis fails carry DISABLED_ (the lead enables them
-// as the rewrite lands); see the report of the refgen session.
+// DISABLED_ cases failed on the diagnosis before the issue-#10 rewrite; the
+// lead enables them (each costs a diagnosis, about 20-60 s CPU in Release).
 #ifdef RTB_HAVE_OFFLINE
 #include <gtest/gtest.h>
 
@@ -67,14 +67,16 @@ TEST(IndependentDiagnose, FloatingClearanceIsBacklash) {
 }
 
 // A clearance whose bushing end is held in the gap (deformation frozen,
-// force relaxing) is a backlash too (issue #10, item 4). Fails now: `none`.
+// force relaxing) is a backlash too (issue #10, item 4). Before the rewrite:
+// `none`; after it (merged main ea9ffc1): `backlash`, passes.
 TEST(IndependentDiagnose, DISABLED_HeldClearanceIsBacklash) {
   const Diagnosed d = diagnose_refgen("backlash_held", 1);
   EXPECT_EQ(d.R.cause, "backlash") << d.R.verdict;
 }
 
 // A strip that cannot push goes slack near the end of unloading (issue #10,
-// item 6; a word the current vocabulary does not have).
+// item 6). Before the rewrite the word did not exist (8 s records: `mullins`);
+// after it (merged main ea9ffc1): `slack`, passes.
 TEST(IndependentDiagnose, DISABLED_SlackStripIsSlack) {
   const Diagnosed d = diagnose_refgen("slack", 1);
   EXPECT_EQ(d.R.cause, "slack") << d.R.verdict;
