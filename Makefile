@@ -7,6 +7,10 @@
 #   make embedded cross-compile for a Cortex-M4F, print size and stack, run a
 #                 test firmware in QEMU (installs its own Debian packages;
 #                 not needed by make test)
+#   make fuzz     libFuzzer targets (clang-14) for FUZZ_SECONDS each, in build-fuzz/
+#   make fmu      build/fmu/rt_bushing.fmu, FMI 2.0 co-simulation (PARAMS=FILE: a specific bushing)
+#   make acceptance  build, then `rtb diagnose` on records of the independent
+#                 generator tests/refgen (table in build/acceptance/table.txt)
 #   make clean    remove the build trees
 # Every target except clean first checks the Debian packages it needs (deps).
 
@@ -25,21 +29,23 @@ CTEST     ?= ctest
 SUBMAKE_ENV := env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL
 
 DEB_PACKAGES := cmake g++ make libgtest-dev libbenchmark-dev libeigen3-dev \
-                nlohmann-json3-dev gnuplot-nox
+                nlohmann-json3-dev gnuplot-nox zip unzip libxml2-dev
+# Only `make fuzz` needs clang and libFuzzer; `make test` replays the seed
+# corpus with the gcc build instead (fuzz/CMakeLists.txt).
+FUZZ_PACKAGES := cmake make clang-14 libfuzzer-14-dev nlohmann-json3-dev
 
 # make embedded only (issue #11): cross toolchain, newlib, the QEMU board.
 EMBEDDED_PACKAGES := gcc-arm-none-eabi libnewlib-arm-none-eabi qemu-system-arm python3
 
-.PHONY: all deps deps-embedded configure build test test-release check-symbols test-asan \
-        demo bench report embedded clean
+.PHONY: all deps fuzz-deps deps-embedded configure build test test-release check-symbols \
+        test-asan demo bench report embedded fuzz fmu acceptance clean
 
 all: build
 
 # ------------------------------------------------------------------ deps
 # Only Debian packages are ever installed; nothing else is downloaded.
-# $(call install_debs,PACKAGES): install the missing ones (as root), or say
-# which to install.
-define install_debs
+# $(call ensure_packages,LIST): install what is missing (root) or say how.
+define ensure_packages
 	@missing=""; \
 	for p in $(1); do \
 	  if ! dpkg-query -W -f='$${Status}\n' "$$p" 2>/dev/null | grep -q '^install ok installed$$'; then \
@@ -59,14 +65,23 @@ define install_debs
 endef
 
 deps:
-	$(call install_debs,$(DEB_PACKAGES))
+	$(call ensure_packages,$(DEB_PACKAGES))
+
+fuzz-deps:
+	$(call ensure_packages,$(FUZZ_PACKAGES))
 
 deps-embedded:
-	$(call install_debs,$(EMBEDDED_PACKAGES))
+	$(call ensure_packages,$(EMBEDDED_PACKAGES))
 
 # ------------------------------------------------------------------ build
+# The bushing compiled into the FMU: empty = the paper's section 3.4 set on
+# every axis; else a six-axis JSON, a single-axis JSON (all six axes) or a
+# header written by `rtb header` (its constant named after the file). Passed
+# on every configure, so a plain `make test` goes back to the default.
+PARAMS ?=
 configure: deps
-	$(CMAKE) -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release
+	$(CMAKE) -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release \
+	  -DRTB_FMU_PARAMS="$(if $(PARAMS),$(abspath $(PARAMS)))"
 
 build: configure
 	$(SUBMAKE_ENV) $(CMAKE) --build $(BUILD) --parallel $(JOBS)
@@ -88,7 +103,7 @@ check-symbols: build
 ASAN_OPT_FLAGS ?= -O1 -g1 -DNDEBUG
 test-asan: deps
 	$(CMAKE) -S . -B $(ASAN) -DRTB_SANITIZE=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-	  -DRTB_BUILD_BENCH=OFF \
+	  -DRTB_BUILD_BENCH=OFF -DRTB_FMU_PARAMS= \
 	  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="$(ASAN_OPT_FLAGS)" \
 	  -DCMAKE_C_FLAGS_RELWITHDEBINFO="$(ASAN_OPT_FLAGS)"
 	$(SUBMAKE_ENV) $(CMAKE) --build $(ASAN) --parallel $(JOBS)
@@ -111,6 +126,13 @@ report: build
 	  echo "  Put it there or run: make report DATA_DIR=/path/to/data"; exit 1; fi
 	./$(BUILD)/rtb report --data-dir "$(DATA_DIR)" --out-dir docs/results
 
+# `rtb diagnose` scored on records from the independent reference generator
+# (tests/refgen/acceptance.sh; issue #10). 10-60 s per case: the quick set
+# takes 10-20 min; ACCEPT_ARGS="--set all" runs every word on two seeds.
+ACCEPT_ARGS ?= --set quick
+acceptance: build
+	bash tests/refgen/acceptance.sh --build $(BUILD) $(ACCEPT_ARGS)
+
 bench: build
 	@if [ ! -x $(BUILD)/bench/rtb_bench ]; then echo "$(BUILD)/bench/rtb_bench was not built (no bench/*_bench.cpp?)"; exit 1; fi
 	./$(BUILD)/bench/rtb_bench --benchmark_out=$(BUILD)/bench.json --benchmark_out_format=json
@@ -121,5 +143,33 @@ bench: build
 embedded: deps-embedded
 	$(SUBMAKE_ENV) $(MAKE) -C embedded OUT=$(CURDIR)/build-embedded
 
+# ------------------------------------------------------------------ fuzzing
+# Each target runs FUZZ_SECONDS from the seed corpus fuzz/corpus/<target>/
+# (read only); new inputs go to $(FUZZ)/corpus/<target>/, crashes to
+# $(FUZZ)/artifacts/. A crash stops make with the reproducer's path:
+# turn it into a regression test (tests/*_test.cpp) and add it to the corpus.
+FUZZ         ?= build-fuzz
+FUZZ_SECONDS ?= 30
+FUZZ_TARGETS := csv_reader params_json stepper
+fuzz: fuzz-deps
+	$(CMAKE) -S . -B $(FUZZ) -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+	  -DCMAKE_C_COMPILER=clang-14 -DCMAKE_CXX_COMPILER=clang++-14 -DRTB_FUZZ=ON \
+	  -DRTB_BUILD_TESTS=OFF -DRTB_BUILD_BENCH=OFF -DRTB_BUILD_OFFLINE=OFF
+	$(SUBMAKE_ENV) $(CMAKE) --build $(FUZZ) --parallel $(JOBS)
+	@for t in $(FUZZ_TARGETS); do \
+	  mkdir -p $(FUZZ)/corpus/$$t $(FUZZ)/artifacts; \
+	  echo "== fuzz $$t for $(FUZZ_SECONDS) s"; \
+	  UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 \
+	  ./$(FUZZ)/fuzz/$${t}_fuzz -max_total_time=$(FUZZ_SECONDS) -print_final_stats=1 \
+	    -artifact_prefix=$(FUZZ)/artifacts/$$t- $(FUZZ)/corpus/$$t fuzz/corpus/$$t \
+	    2> $(FUZZ)/$$t.log || { tail -n 40 $(FUZZ)/$$t.log; exit 1; }; \
+	  grep -E '^stat::(number_of_executed_units|new_units_added)' $(FUZZ)/$$t.log | tr '\n' ' '; echo; \
+	done
+	@echo "make fuzz: $(words $(FUZZ_TARGETS)) targets, $(FUZZ_SECONDS) s each, no crash"
+# FMI 2.0 co-simulation FMU (zip from Debian; see README "Importing the FMU").
+fmu: configure
+	$(SUBMAKE_ENV) $(CMAKE) --build $(BUILD) --parallel $(JOBS) --target fmu
+	@echo "built $(BUILD)/fmu/rt_bushing.fmu$(if $(PARAMS), with $(PARAMS))"
+
 clean:
-	rm -rf $(BUILD) $(ASAN) build-embedded
+	rm -rf $(BUILD) $(ASAN) $(FUZZ) build-embedded

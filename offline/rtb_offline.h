@@ -85,7 +85,9 @@ double param_get(const rtb_params &p, ParamId id);
 struct SimOptions {
   double ramp_time = 0.0;   // ramp in linearly from rest to x[0] over this
                             // time before the record (<= 0: automatic)
-  double tol = 1e-12;       // Newton tolerance of the stepper (rtb_settings)
+  double tol = 0.0;         // Newton tolerance of the stepper (rtb_settings.tol);
+                            // 0: the library default, i.e. exactly what a
+                            // controller passing NULL settings runs
 };
 // Force predicted by the stepper for the record's displacement and time grid.
 // Throws std::runtime_error if the stepper reports an error.

@@ -16,22 +16,61 @@
  *   rtb_params p;  rtb_params_default(&p, RTB_MODEL_RT);   // or a generated header
  *   rtb_state  s;  rtb_state_init(&s, &p, 0.0);
  *   for (...) { double F; rtb_status st = rtb_step(&s, &p, NULL, x, dt, &F); }
+ *
+ * Thread safety: the library has no global mutable state. Calls on distinct
+ * rtb_state objects may run concurrently in any number of threads. The
+ * read-only inputs (rtb_params, rtb_settings, and the committed state `s` of
+ * rtb_evaluate) may be shared between threads as long as no thread writes
+ * them meanwhile; a state that is written (rtb_step, rtb_commit, the `trial`
+ * of rtb_evaluate, rtb_state_init) must be used by one thread at a time.
+ * rtb_status_message and rtb_get_info return pointers to constant strings.
+ *
+ * Stack: every library function's own frame is at most RTB_STACK_FRAME_MAX
+ * bytes (checked at build time with GCC's -Wstack-usage, see CMakeLists.txt),
+ * and the deepest call chain (rtb_evaluate with a clearance: API -> step ->
+ * clearance -> response -> chain advance -> stage solve -> dashpot law) uses
+ * at most RTB_STACK_DEPTH_MAX bytes in an optimised x86-64 build (the
+ * single-axis chain measured 10.4 KiB at -O3, 12.2 KiB at -O2 by
+ * tests/step_info_test.cpp, which paints a thread's stack; rtb_bushing6_*
+ * adds its own frame; sanitizer and -O0 builds use more). Reserve at least
+ * that much for a real-time thread that calls the library.
  */
 #ifndef RT_BUSHING_H
 #define RT_BUSHING_H
+
+#include <stdint.h>
 
 #ifdef __cplusplus
 extern "C" {
 #endif
 
+/* Exported functions. The library is built with -fvisibility=hidden: only
+ * the functions marked RTB_API are visible outside a shared build. */
+#ifndef RTB_API /* a host that links the sources into its own binary (the FMU) may
+                   define it empty to keep every rtb_ symbol internal */
+#if defined(__GNUC__)
+#define RTB_API __attribute__((visibility("default")))
+#else
+#define RTB_API
+#endif
+#endif
+
+#define RTB_STACK_FRAME_MAX 8192   /* bytes, per function (-Wstack-usage); the largest are
+                                      rtb_bushing6_init/step (~6.4 KiB: six axis states)
+                                      and rtb_step_core (~4.3 KiB) */
+#define RTB_STACK_DEPTH_MAX 24576  /* bytes, deepest call chain (rtb_bushing6_step:
+                                      its frame + one axis' rtb_step chain) */
+
 /* ------------------------------------------------------------------ */
 /* Types                                                               */
 /* ------------------------------------------------------------------ */
 
-#define RTB_ABI_VERSION 3     /* bumped on any layout change of the structs
+#define RTB_ABI_VERSION 4     /* bumped on any layout change of the structs
                                  (2: `smoothing`, `sat_force`, `sat_disp` took reserved[0..2];
                                   3: slack, backlash_held, fric_asym, spec_* and the
-                                  spectrum memory z_spec in rtb_state) */
+                                  spectrum memory z_spec in rtb_state; fixed-width
+                                  integer fields, struct sizes in rtb_info;
+                                  4: rtb_step_info.work, the spent work budget) */
 #define RTB_MAX_CELLS 32      /* capacity of rtb_state; N = 1 .. RTB_MAX_CELLS */
 #define RTB_DEFAULT_CELLS 15  /* the paper's choice (section 3.4) */
 #define RTB_N_RESERVED 6
@@ -73,7 +112,9 @@ typedef enum rtb_status {
   RTB_ERR_DT = -10,           /* dt non-finite or outside [RTB_DT_MIN, RTB_DT_MAX] */
   RTB_ERR_STATE = -11,        /* state not initialised for these parameters */
   RTB_ERR_OVERFLOW = -12,     /* the step would produce a non-finite value */
-  RTB_ERR_SETTINGS = -13      /* tolerance or iteration limit out of range */
+  RTB_ERR_SETTINGS = -13,     /* tolerance or iteration limit out of range */
+  RTB_ERR_ALIAS = -14,        /* an output struct aliases an input (trial == s) */
+  RTB_ERR_CAPACITY = -15      /* a capacity argument is negative */
 } rtb_status;
 
 typedef enum rtb_model {
@@ -93,10 +134,10 @@ typedef enum rtb_integrator {
  * silently misread. Every extension is off when its field is zero.
  */
 typedef struct rtb_params {
-  int abi_version;   /* = RTB_ABI_VERSION */
-  int model;         /* rtb_model */
-  int cells;         /* N */
-  int integrator;    /* rtb_integrator (RT only; STS is rate-independent) */
+  int32_t abi_version;   /* = RTB_ABI_VERSION */
+  int32_t model;         /* rtb_model */
+  int32_t cells;         /* N */
+  int32_t integrator;    /* rtb_integrator (RT only; STS is rate-independent) */
 
   /* Core parameters p = (K0, Kpa, Kr, C0, alpha), eq. (2) and (11). */
   rtb_real K0;       /* global elastic stiffness, >= 0       [force/length] */
@@ -160,8 +201,13 @@ typedef struct rtb_params {
  * exp, one log), 3 per smoothed eq. (14) evaluation (each inverse iteration
  * included), N per STS response. A Newton sweep costs N evaluations, a
  * clearance response one or more sweeps; each starts only while a whole
- * sweep is left. When the budget runs out the step commits its best iterate
- * and returns RTB_NOT_CONVERGED. A 1 kHz step at N = 15 uses 4 to 5 sweeps
+ * sweep is left. The stage starts of the response under way still complete
+ * (a consistent iterate needs them), so the hard bound is RTB_STEP_WORK +
+ * 6 N u (u = 3 with smoothing, else 1): each of two stages starts with at
+ * most three sweeps (the pair from the last step, the law at the predicted
+ * velocity, rest). rtb_step_info.work reports what a step spent. When the
+ * budget runs out the step commits its best iterate and returns
+ * RTB_NOT_CONVERGED. A 1 kHz step at N = 15 uses 4 to 5 sweeps
  * (~70 units); with every extension, smoothing and a clearance ~1000-2000.
  * The default bounds a step at ~110 us on the benchmark machine; building
  * the library with -DRTB_STEP_WORK=1024 bounds it at ~35 us, at the price of
@@ -208,18 +254,18 @@ typedef struct rtb_params {
 
 /* Numerical settings of the implicit solve. NULL means rtb_settings_default. */
 typedef struct rtb_settings {
-  rtb_real tol;      /* relative residual tolerance of each Newton solve (1e-12;
-                        1e-10 leaves docs/accuracy.md unchanged and saves ~8%) */
-  int max_iter;      /* Newton iterations per stage, 1..100 (default 40) */
-  int max_backtrack; /* line-search halvings per iteration, 0..60 (default 30) */
+  rtb_real tol;          /* relative residual tolerance of each Newton solve (1e-12;
+                            1e-10 leaves docs/accuracy.md unchanged and saves ~8%) */
+  int32_t max_iter;      /* Newton iterations per stage, 1..100 (default 40) */
+  int32_t max_backtrack; /* line-search halvings per iteration, 0..60 (default 30) */
 } rtb_settings;
 
 /* State of one element. Plain data: copy it to save/restore (host rollback). */
 typedef struct rtb_state {
-  int abi_version;
-  int model;
-  int cells;
-  int initialised;             /* 1 after rtb_state_init */
+  int32_t abi_version;
+  int32_t model;
+  int32_t cells;
+  int32_t initialised;         /* 1 after rtb_state_init */
   rtb_real x;                  /* last committed input displacement [length] */
   rtb_real xb;                 /* bushing-side displacement (x minus clearance) */
   rtb_real force;              /* last committed force [force] */
@@ -233,13 +279,34 @@ typedef struct rtb_state {
   rtb_real vx;                 /* last input velocity estimate (inertia) */
   rtb_real z_spec[RTB_MAX_BRANCHES]; /* relaxation-spectrum branch displacements */
   rtb_real reserved[8];
-  long steps;                  /* committed steps */
-  int last_iterations;         /* Newton iterations used by the last step */
-  int contact;                 /* phase of the bushing end in the last step:
+  int64_t steps;               /* committed steps */
+  int32_t last_iterations;     /* Newton iterations used by the last step */
+  int32_t contact;             /* phase of the bushing end in the last step:
                                   2 no clearance/slack (xb = x), +1 / -1 in
                                   contact at x - g/2 / x + g/2, 0 floating
                                   free (F = 0), 3 held inside the clearance */
 } rtb_state;
+
+/* What one step cost and how well it converged (rtb_step_ex,
+ * rtb_evaluate_ex). Counts cover every implicit solve of the step, including
+ * the trial bushing positions of a clearance search. */
+typedef struct rtb_step_info {
+  int32_t iterations;           /* Newton iterations, all stages (RT) or
+                                   active-set iterations (STS) */
+  int32_t backtracks;           /* line-search halvings, all stages (RT) */
+  int32_t clearance_iterations; /* bushing responses of the clearance search
+                                   (0 without backlash) */
+  int32_t stages;               /* implicit stages of the committed response */
+  rtb_real residual;            /* final relative residual |H| / scale of the
+                                   committed response (max over its stages;
+                                   0 for STS, whose return map is exact) */
+  rtb_real clearance_residual;  /* |F| / (scale (|xb| + g)) of the free bushing
+                                   end when it is inside the gap, else 0 */
+  int32_t work;                 /* units of the step's work budget spent,
+                                   at most RTB_STEP_WORK + 6 N u (see
+                                   RTB_STEP_WORK): the headroom a host has */
+  int32_t pad_;                 /* zero */
+} rtb_step_info;
 
 /* ------------------------------------------------------------------ */
 /* Set-up                                                              */
@@ -247,18 +314,18 @@ typedef struct rtb_state {
 
 /* Fill with the paper's section 3.4 example set (N=15; K0=1000, Kpa=800,
  * Kr=3000 N/mm, C0=40 N (s/mm)^0.2, alpha=0.2; STS: Ff=40 N). */
-rtb_status rtb_params_default(rtb_params *p, int model);
-rtb_status rtb_params_validate(const rtb_params *p);
+RTB_API rtb_status rtb_params_default(rtb_params *p, int model);
+RTB_API rtb_status rtb_params_validate(const rtb_params *p);
 /* rtb_params_validate that also names the offending field ("K0", "cells",
  * "reserved", "maxwell_tau", ...) in *field ("" when valid; field may be
  * NULL). The name is a static string. */
-rtb_status rtb_params_check(const rtb_params *p, const char **field);
-void rtb_settings_default(rtb_settings *s);
-const char *rtb_status_message(rtb_status status);
+RTB_API rtb_status rtb_params_check(const rtb_params *p, const char **field);
+RTB_API void rtb_settings_default(rtb_settings *s);
+RTB_API const char *rtb_status_message(rtb_status status);
 
 /* Initialise at rest with every cell DOF at its static equilibrium for the
  * displacement x0 (0 for a virgin bushing). */
-rtb_status rtb_state_init(rtb_state *s, const rtb_params *p, rtb_real x0);
+RTB_API rtb_status rtb_state_init(rtb_state *s, const rtb_params *p, rtb_real x0);
 
 /* ------------------------------------------------------------------ */
 /* Stepping                                                            */
@@ -267,40 +334,126 @@ rtb_status rtb_state_init(rtb_state *s, const rtb_params *p, rtb_real x0);
 /* Advance one step of length dt to displacement x; write the force.
  * On error (< 0) the state is unchanged and *force is not written.
  * `set` may be NULL. */
-rtb_status rtb_step(rtb_state *s, const rtb_params *p, const rtb_settings *set,
-                    rtb_real x, rtb_real dt, rtb_real *force);
+RTB_API rtb_status rtb_step(rtb_state *s, const rtb_params *p, const rtb_settings *set,
+                            rtb_real x, rtb_real dt, rtb_real *force);
 
 /* Evaluate a trial step without touching the committed state `s`: the result
- * goes into `trial` (may not alias `s`), its force into *force, and the
+ * goes into `trial` (may not alias `s`: RTB_ERR_ALIAS), its force into *force, and the
  * analytic tangent dF/dx of the discrete step into *dforce_dx (may be NULL).
  * A host's implicit iterations call this many times per step, then commit. */
-rtb_status rtb_evaluate(const rtb_state *s, const rtb_params *p,
-                        const rtb_settings *set, rtb_real x, rtb_real dt,
-                        rtb_state *trial, rtb_real *force, rtb_real *dforce_dx);
+RTB_API rtb_status rtb_evaluate(const rtb_state *s, const rtb_params *p,
+                                const rtb_settings *set, rtb_real x, rtb_real dt,
+                                rtb_state *trial, rtb_real *force, rtb_real *dforce_dx);
+
+/* As rtb_step and rtb_evaluate, and also report the step's cost and
+ * residuals into *info (may be NULL; not written on error). */
+RTB_API rtb_status rtb_step_ex(rtb_state *s, const rtb_params *p, const rtb_settings *set,
+                               rtb_real x, rtb_real dt, rtb_real *force, rtb_step_info *info);
+RTB_API rtb_status rtb_evaluate_ex(const rtb_state *s, const rtb_params *p,
+                                   const rtb_settings *set, rtb_real x, rtb_real dt,
+                                   rtb_state *trial, rtb_real *force, rtb_real *dforce_dx,
+                                   rtb_step_info *info);
 
 /* Make a trial state the committed one (a plain copy, provided for clarity). */
-rtb_status rtb_commit(rtb_state *s, const rtb_state *trial);
+RTB_API rtb_status rtb_commit(rtb_state *s, const rtb_state *trial);
 
 /* ------------------------------------------------------------------ */
 /* Inspection                                                          */
 /* ------------------------------------------------------------------ */
 
-/* Copy the N cell DOFs y_k into out[0..cap-1]; returns the count or < 0. */
-int rtb_cell_states(const rtb_state *s, rtb_real *out, int cap);
+/* Copy the first min(N, cap) cell DOFs y_k into out[0..cap-1]; returns that
+ * count (>= 0), or RTB_ERR_NULL, RTB_ERR_STATE, RTB_ERR_CAPACITY (cap < 0). */
+RTB_API int rtb_cell_states(const rtb_state *s, rtb_real *out, int cap);
 
 typedef struct rtb_info {
-  int abi_version;
-  int max_cells;
-  int scalar_bytes;
-  const char *version;   /* library version string, "major.minor.patch" */
-  const char *scalar;    /* "double", or "float" (RTB_SINGLE) */
+  int32_t abi_version;
+  int32_t max_cells;
+  int32_t scalar_bytes;
+  int32_t params_bytes;    /* sizeof(rtb_params) of the library build */
+  int32_t state_bytes;     /* sizeof(rtb_state) */
+  int32_t settings_bytes;  /* sizeof(rtb_settings) */
+  const char *version;     /* library version string, "major.minor.patch" */
+  const char *scalar;      /* "double", or "float" (RTB_SINGLE) */
 } rtb_info;
 
-void rtb_get_info(rtb_info *info);
+RTB_API void rtb_get_info(rtb_info *info);
 
 /* Static force for a displacement held forever: every dashpot has relaxed,
  * F = K0 x + x / (1/Kpa + N/Kr) (+ elastic extensions). RT only. */
-rtb_real rtb_static_force(const rtb_params *p, rtb_real x);
+RTB_API rtb_real rtb_static_force(const rtb_params *p, rtb_real x);
+
+/* ================================================================== */
+/* Six-axis bushing                                                    */
+/* ================================================================== */
+/*
+ * A chassis bushing as six independent channels (Adams BUSHING style):
+ * translations x, y, z and rotations rx, ry, rz. Each channel is a complete
+ * single-axis element with its own rtb_params (RT or STS, any extensions, its
+ * own N), embedded by value; the channels do not couple, so the 6x6 tangent
+ * is diagonal. An axis that is off gives zero force and zero stiffness, and
+ * its input is ignored.
+ *
+ * Units of the rotational channels: the element is unit-agnostic, so a
+ * rotational channel reads "length" as angle and "force" as moment. With mm,
+ * N, s and rad: input rad, output N mm; K0, Kpa, Kr in N mm/rad; C0 in
+ * N mm (s/rad)^alpha; k3 in N mm/rad^3; viscous_c in N mm s/rad; mass in
+ * N mm s^2/rad (rotary inertia, tonne mm^2); backlash and sat_disp in rad;
+ * Ff and sat_force in N mm; every other field of RTB_PARAM_FIELDS likewise
+ * (its "length" is rad, its "force" N mm).
+ *
+ * Guarantees are those of the single-axis calls: no heap, bounded work
+ * (six single-axis steps), and all-or-nothing commit: on an error in ANY axis
+ * the committed state is unchanged and no force is written.
+ *
+ *   rtb_bushing6_params p;  rtb_bushing6_params_default(&p, RTB_MODEL_RT);
+ *   rtb_bushing6_state  s;  rtb_bushing6_init(&s, &p, NULL, NULL);
+ *   double x[6] = {dx, dy, dz, ax, ay, az}, F[6];   // F = fx fy fz mx my mz
+ *   int bad;  rtb_status st = rtb_bushing6_step(&s, &p, NULL, x, dt, F, &bad);
+ */
+
+#define RTB_AXES 6
+
+typedef enum rtb_axis {
+  RTB_AXIS_X = 0, RTB_AXIS_Y = 1, RTB_AXIS_Z = 2,   /* translations -> fx fy fz */
+  RTB_AXIS_RX = 3, RTB_AXIS_RY = 4, RTB_AXIS_RZ = 5 /* rotations -> mx my mz */
+} rtb_axis;
+
+typedef struct rtb_bushing6_params {
+  int active[RTB_AXES];        /* 1 = on, 0 = off (zero force; axis[] ignored) */
+  rtb_params axis[RTB_AXES];   /* one complete parameter set per channel */
+} rtb_bushing6_params;
+
+/* Plain data: copy it to save/restore (host rollback). */
+typedef struct rtb_bushing6_state {
+  rtb_state axis[RTB_AXES];    /* an off axis holds zeros (initialised = 0) */
+} rtb_bushing6_state;
+
+/* Every call below that can fail on one axis writes that axis's index to
+ * *bad_axis (or -1 when the failure is not an axis's); bad_axis may be NULL. */
+
+/* Every axis on, each with rtb_params_default(model). */
+RTB_API rtb_status rtb_bushing6_params_default(rtb_bushing6_params *p, int model);
+/* active[] must be 0 or 1 (RTB_ERR_MODEL); each active axis must validate. */
+RTB_API rtb_status rtb_bushing6_validate(const rtb_bushing6_params *p, int *bad_axis);
+/* Relaxed state at displacements x0[6] (NULL: all zero). */
+RTB_API rtb_status rtb_bushing6_init(rtb_bushing6_state *s, const rtb_bushing6_params *p,
+                             const rtb_real x0[RTB_AXES], int *bad_axis);
+/* Trial step of every axis to x[6] over dt: forces into force[6] and the
+ * diagonal of the 6x6 tangent dF/dx into dforce_dx[6] (may be NULL). `s` is
+ * never touched; `trial` (may not alias `s`) is complete only on success.
+ * The status is the first error, else RTB_NOT_CONVERGED if any axis warned. */
+RTB_API rtb_status rtb_bushing6_evaluate(const rtb_bushing6_state *s, const rtb_bushing6_params *p,
+                                 const rtb_settings *set, const rtb_real x[RTB_AXES],
+                                 rtb_real dt, rtb_bushing6_state *trial,
+                                 rtb_real force[RTB_AXES], rtb_real dforce_dx[RTB_AXES],
+                                 int *bad_axis);
+RTB_API rtb_status rtb_bushing6_commit(rtb_bushing6_state *s, const rtb_bushing6_state *trial);
+/* evaluate + commit: on error (< 0) neither *s nor force[] is written. */
+RTB_API rtb_status rtb_bushing6_step(rtb_bushing6_state *s, const rtb_bushing6_params *p,
+                             const rtb_settings *set, const rtb_real x[RTB_AXES], rtb_real dt,
+                             rtb_real force[RTB_AXES], int *bad_axis);
+/* "x", "y", "z", "rx", "ry", "rz" (NULL outside 0..5). */
+const char *rtb_axis_name(int axis);
 
 #ifdef __cplusplus
 }

@@ -56,6 +56,10 @@ int main(void) {
   check(info.scalar_bytes == RTB_SCALAR_BYTES, "RTB_SCALAR_BYTES");
   check(info.version != NULL && info.version[0] != '\0', "info.version");
   check(info.scalar != NULL && strcmp(info.scalar, "double") == 0, "info.scalar");
+  /* The library's struct sizes match this client's header. */
+  check(info.params_bytes == (int32_t)sizeof(rtb_params), "info.params_bytes");
+  check(info.state_bytes == (int32_t)sizeof(rtb_state), "info.state_bytes");
+  check(info.settings_bytes == (int32_t)sizeof(rtb_settings), "info.settings_bytes");
 
   check(rtb_params_default(&rt, RTB_MODEL_RT) == RTB_OK, "rtb_params_default RT");
   check(rtb_params_default(&sts, RTB_MODEL_STS) == RTB_OK, "rtb_params_default STS");
@@ -78,6 +82,33 @@ int main(void) {
   check(memcmp(&s, &before, sizeof s) == 0, "state untouched after error");
   check(rtb_status_message(st) != NULL && rtb_status_message(st)[0] != '\0',
         "status message");
+
+  /* rtb_step_ex reports the step's cost; trial == s is RTB_ERR_ALIAS. */
+  {
+    rtb_step_info si;
+    rtb_state trial;
+    double df = 0.0;
+    memset(&si, 0, sizeof si);
+    check(rtb_step_ex(&s, &rt, NULL, 0.2, 1e-3, &f, &si) == RTB_OK, "rtb_step_ex");
+    check(si.stages == 2 && si.iterations >= 1 && si.residual <= 1e-12, "rtb_step_info");
+    check(rtb_evaluate_ex(&s, &rt, NULL, 0.2, 1e-3, &trial, &f, &df, NULL) == RTB_OK,
+          "rtb_evaluate_ex without info");
+    check(rtb_evaluate(&s, &rt, NULL, 0.2, 1e-3, &s, &f, &df) == RTB_ERR_ALIAS, "alias");
+  }
+  /* The six-axis element from C99: x and rz on, the rest off. */
+  {
+    rtb_bushing6_params p6;
+    rtb_bushing6_state s6;
+    double x6[RTB_AXES] = {0.1, 0.0, 0.0, 0.0, 0.0, 0.01}, F6[RTB_AXES];
+    int bad = 0, a;
+    check(rtb_bushing6_params_default(&p6, RTB_MODEL_RT) == RTB_OK, "bushing6 default");
+    for (a = RTB_AXIS_Y; a <= RTB_AXIS_RY; ++a) p6.active[a] = 0;
+    check(rtb_bushing6_init(&s6, &p6, NULL, &bad) == RTB_OK && bad == -1, "bushing6 init");
+    check(rtb_bushing6_step(&s6, &p6, NULL, x6, 1e-3, F6, &bad) == RTB_OK, "bushing6 step");
+    check(F6[RTB_AXIS_X] > 0.0 && F6[RTB_AXIS_RZ] > 0.0 && F6[RTB_AXIS_Y] == 0.0,
+          "bushing6 forces");
+    check(strcmp(rtb_axis_name(RTB_AXIS_RZ), "rz") == 0, "rtb_axis_name");
+  }
 
   if (failures) {
     printf("c99_client: %d failure(s)\n", failures);

@@ -8,6 +8,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -18,8 +19,10 @@
 #include <string>
 #include <vector>
 
+#include "cli_path.h"
 #include "offline/io/csv.h"
 #include "offline/io/header_writer.h"
+#include "temp_dir.h"
 #include "offline/rtb_offline.h"
 
 namespace fs = std::filesystem;
@@ -131,7 +134,8 @@ TEST(Header, Contents) {
   EXPECT_NE(h.find("#include \"rt_bushing.h\"\n"), std::string::npos);
   EXPECT_NE(h.find("#ifndef RTB_PARAMS_H_test_bushing_rt\n#define RTB_PARAMS_H_test_bushing_rt\n"),
             std::string::npos);
-  EXPECT_NE(h.find("typedef char test_bushing_rt_check_abi[(RTB_ABI_VERSION == 3) ? 1 : -1];"),
+  EXPECT_NE(h.find("typedef char test_bushing_rt_check_abi[(RTB_ABI_VERSION == " +
+                   std::to_string(RTB_ABI_VERSION) + ") ? 1 : -1];"),
             std::string::npos);
   EXPECT_NE(h.find("typedef char test_bushing_rt_check_scalar[(RTB_SCALAR_BYTES == 8) ? 1 : -1];"),
             std::string::npos);
@@ -299,6 +303,124 @@ TEST(Header, CompilesAsC99AndCxx17AndMatchesSimulateBitForBit) {
     }
   }
 #endif
+}
+
+// ---------------------------------------------------------------- six axes
+// `rtb header --axis x=fx.json --axis rz=mz.json`: reproducible bytes, the
+// same constant from --bushing6, and a program compiled against it as C99
+// and as C++17 gives bit for bit what rtb_bushing6_step gives in-process.
+namespace {
+
+rtb_bushing6_params two_axis_params() {
+  rtb_bushing6_params p;
+  rtb_bushing6_params_default(&p, RTB_MODEL_RT);
+  for (int a = 0; a < RTB_AXES; ++a) p.active[a] = 0;
+  p.active[RTB_AXIS_X] = p.active[RTB_AXIS_RZ] = 1;
+  p.axis[RTB_AXIS_X] = rt_params();
+  p.axis[RTB_AXIS_RZ] = sts_params();
+  return p;
+}
+
+// What client6.c prints, computed here with the library.
+std::string client6_reference(const rtb_bushing6_params &p) {
+  rtb_bushing6_state s;
+  std::string out;
+  if (rtb_bushing6_init(&s, &p, nullptr, nullptr) != RTB_OK) return "init failed";
+  for (int i = 1; i <= 300; ++i) {
+    double x[RTB_AXES], F[RTB_AXES];
+    for (int a = 0; a < RTB_AXES; ++a) x[a] = (a < RTB_AXIS_RX ? 0.5 : 0.02) * std::sin(0.03 * i * (a + 1));
+    if (rtb_bushing6_step(&s, &p, nullptr, x, 1e-3, F, nullptr) < 0) return "step failed";
+    char buf[64];
+    for (int a = 0; a < RTB_AXES; ++a) {
+      std::snprintf(buf, sizeof buf, "%a%c", F[a], a + 1 < RTB_AXES ? ' ' : '\n');
+      out += buf;
+    }
+  }
+  return out;
+}
+
+std::string constant_part(const std::string &h) { return h.substr(h.find("static const")); }
+
+}  // namespace
+
+TEST(Header6, CliHeaderIsReproducibleAndCompilesAsC99AndCxx17) {
+  const std::string cc = find_compiler(nullptr, {"cc", "gcc", "clang"});
+  const std::string cxx = find_compiler(nullptr, {"c++", "g++", "clang++"});
+  if (cc.empty() || cxx.empty()) GTEST_SKIP() << "no C/C++ compiler found";
+#ifndef RTB_LIB_PATH
+  GTEST_SKIP() << "RTB_LIB_PATH not defined by tests/CMakeLists.txt";
+#else
+#ifdef RTB_TEST_SANITIZE_FLAGS
+  const std::string san = std::string(" ") + RTB_TEST_SANITIZE_FLAGS;
+#else
+  const std::string san;
+#endif
+  rtb_test::TempDir d("rtb_header6");
+  const rtb_bushing6_params p = two_axis_params();
+  rtb::write_file_atomic(d.file("fx.json"), rtb::params_to_json_text(p.axis[RTB_AXIS_X]));
+  rtb::write_file_atomic(d.file("mz.json"), rtb::params_to_json_text(p.axis[RTB_AXIS_RZ]));
+  const std::string rtb = shell_quote(rtb_test::kRtb);
+  const std::string axes = " --axis x=" + shell_quote(d.file("fx.json")) + " --axis rz=" +
+                           shell_quote(d.file("mz.json"));
+  std::string log;
+  ASSERT_EQ(run(rtb + " header" + axes + " --out " + shell_quote(d.file("bushing6.h")), &log), 0)
+      << log;
+  ASSERT_EQ(run(rtb + " header" + axes + " --name bushing6 --quiet --out " +
+                    shell_quote(d.file("again.h")), &log), 0) << log;
+  const std::string h = read_text(d.file("bushing6.h"));
+  EXPECT_EQ(read_text(d.file("again.h")), h);
+  EXPECT_NE(h.find("static const rtb_bushing6_params bushing6 = {"), std::string::npos) << h;
+  EXPECT_NE(h.find("{ 1, 0, 0, 0, 0, 1 }, /* active"), std::string::npos) << h;
+  EXPECT_NE(h.find(rtb::sha256_file(d.file("mz.json"))), std::string::npos);
+  // The six-axis JSON gives the same constant.
+  rtb::write_file_atomic(d.file("b6.json"), "{\"x\": " + read_text(d.file("fx.json")) +
+                                                 ", \"rz\": " + read_text(d.file("mz.json")) + "}");
+  ASSERT_EQ(run(rtb + " header --bushing6 " + shell_quote(d.file("b6.json")) +
+                    " --name bushing6 --out " + shell_quote(d.file("b6.h")), &log), 0) << log;
+  EXPECT_EQ(constant_part(read_text(d.file("b6.h"))), constant_part(h));
+
+  const std::string src = std::string(RTB_SOURCE_DIR) + "/tests/header_compile/client6.c";
+  const std::string inc = " -I" + shell_quote(d.path()) + " -I" +
+                          shell_quote(std::string(RTB_SOURCE_DIR) + "/rt_bushing") + " ";
+  const std::string libs = " " + shell_quote(RTB_LIB_PATH) + " -lm -o ";
+  const std::string ref = client6_reference(p);
+  const struct {
+    const char *label;
+    std::string compile, exe;
+  } programs[] = {
+      {"C99", shell_quote(cc) + " -std=c99 -pedantic -Wall -Wextra -Werror" + san + inc +
+                  shell_quote(src) + libs + shell_quote(d.file("c6")), d.file("c6")},
+      {"C++17", shell_quote(cxx) + " -x c++ -std=c++17 -pedantic -Wall -Wextra -Werror" + san +
+                    inc + shell_quote(src) + " -x none" + libs + shell_quote(d.file("cpp6")),
+       d.file("cpp6")},
+  };
+  for (const auto &prog : programs) {
+    ASSERT_EQ(run(prog.compile, &log), 0) << prog.label << ":\n" << prog.compile << "\n" << log;
+    std::string out;
+    ASSERT_EQ(run(shell_quote(prog.exe), &out), 0) << prog.label << out;
+    EXPECT_EQ(out, ref) << prog.label << ": differs from rtb_bushing6_step";
+  }
+  EXPECT_EQ(std::count(ref.begin(), ref.end(), '\n'), 300);
+  EXPECT_EQ(ref.find("0x0p+0 0x0p+0 0x0p+0 0x0p+0 0x0p+0 0x0p+0"), std::string::npos);
+#endif
+}
+
+TEST(Header6, CliRefusesBadAxesAndWritesNothing) {
+  rtb_test::TempDir d("rtb_header6_bad");
+  rtb::write_file_atomic(d.file("fx.json"), rtb::params_to_json_text(rt_params()));
+  const std::string rtb = shell_quote(rtb_test::kRtb), fx = shell_quote(d.file("fx.json"));
+  const std::string out = " --out " + shell_quote(d.file("h.h"));
+  std::string log;
+  EXPECT_EQ(run(rtb + " header --axis q=" + fx + out, &log), 2) << log;
+  EXPECT_NE(log.find("x y z rx ry rz"), std::string::npos) << log;
+  EXPECT_EQ(run(rtb + " header --axis x=" + fx + " --axis x=" + fx + out, &log), 2) << log;
+  EXPECT_EQ(run(rtb + " header --axis x=" + fx + " --params " + fx + out, &log), 2) << log;
+  EXPECT_EQ(run(rtb + " header --axis x=" + fx + " --out " + shell_quote(d.file("int.h")), &log), 2)
+      << log;  // the constant would be named "int"
+  rtb::write_file_atomic(d.file("b6.json"), "{\"x\": {\"model\": \"rt\"}}");
+  EXPECT_EQ(run(rtb + " header --bushing6 " + shell_quote(d.file("b6.json")) + out, &log), 2);
+  EXPECT_NE(log.find("axis x"), std::string::npos) << log;
+  EXPECT_EQ(d.entries(), (std::vector<std::string>{"b6.json", "fx.json"}));
 }
 
 #endif  // RTB_HAVE_OFFLINE

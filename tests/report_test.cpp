@@ -242,6 +242,21 @@ TEST(ReportPaperFigures, Figure5CellCountLoopsConverge) {
 
 // ------------------------------------------------------------------ Figure 6
 
+// d ln(F - F_static) / d ln(tau) between tau1 and tau2 after the end of the
+// rise (nearest samples).
+double excess_decay_exponent(const StepStudy &r, double tau1, double tau2) {
+  auto excess_at = [&](double tau, double *tau_found) {
+    size_t best = 0;
+    for (size_t i = 0; i < r.rt.t.size(); ++i)
+      if (std::fabs(r.rt.t[i] - r.rise - tau) < std::fabs(r.rt.t[best] - r.rise - tau)) best = i;
+    *tau_found = r.rt.t[best] - r.rise;
+    return r.rt.F[best] - r.F_static;
+  };
+  double t1, t2;
+  const double e1 = excess_at(tau1, &t1), e2 = excess_at(tau2, &t2);
+  return std::log(e2 / e1) / std::log(t2 / t1);
+}
+
 // Left: the secant stiffness grows 3-7 % per decade (paper 4 %, 4.5 %).
 // Right: after the 10 ms step the load decays monotonically, never below the
 // static limit, and ends within 1 % of it after 1e6 s.
@@ -264,6 +279,13 @@ TEST(ReportPaperFigures, Figure6StiffeningAndRelaxation) {
     ASSERT_GT(r.rt.F[i], r.F_static) << "t = " << r.rt.t[i];
   }
   EXPECT_LT(r.rt.F.back(), 1.01 * r.F_static);
+  // Late relaxation is the power law of the dashpot law (eq. (1)): with an
+  // excess force e = F - F_static held by springs, e = C0 |v|^alpha and
+  // v ~ de/dt give de/dt ~ -e^(1/alpha), so e ~ t^(-alpha/(1-alpha)) =
+  // t^-0.25 for alpha = 0.2. Measured over the last two decades.
+  const double p = excess_decay_exponent(r, 1e4, 1e6);
+  std::printf("[fig6] excess decay exponent over 1e4..1e6 s: %.4f (closed form -0.25)\n", p);
+  EXPECT_NEAR(p, -0.25, 0.01);
 }
 
 // ------------------------------------------------------------------ Figure 8
@@ -275,24 +297,41 @@ TEST(ReportPaperFigures, Figure8StsHoldsRtRelaxes) {
   for (double F : s.sts.F) sts_max = std::max(sts_max, F);
   EXPECT_DOUBLE_EQ(rt_max, s.F_peak);  // the maximum is at the end of the rise
   EXPECT_NEAR(s.sts.F.back() / sts_max, 1.0, 1e-12);
-  EXPECT_LT(s.rt.F.back() / rt_max, 0.90);
-  EXPECT_GT(s.rt.F.back() / rt_max, 0.80);
+  // RT relaxes towards, and never below, the static closed form
+  // K0 X + X / (1/Kpa + N/Kr) (all dashpots relaxed).
+  const rtb_params p = [] {
+    rtb_params q;
+    rtb_params_default(&q, RTB_MODEL_RT);
+    return q;
+  }();
+  const double F_static = p.K0 * s.X + s.X / (1.0 / p.Kpa + p.cells / p.Kr);
+  EXPECT_GT(s.rt.F.back(), F_static);
+  EXPECT_LT(s.rt.F.back(), rt_max);
+  // Its excess decays, but not faster than the asymptotic power law t^-0.25
+  // (Figure 6 test): after a finite rise the law is ~ (t + t0)^-0.25, whose
+  // local exponent in t lies in (-0.25, 0). Measured -0.208 over 1..9.9 s.
+  const double p8 = excess_decay_exponent(s, 1.0, 9.9);
+  std::printf("[fig8] RT end/peak %.4f, static/peak %.4f, excess decay exponent 1..9.9 s %.4f\n",
+              s.rt.F.back() / rt_max, F_static / rt_max, p8);
+  EXPECT_LT(p8, 0.0);
+  EXPECT_GT(p8, -0.25);
 }
 
 // ------------------------------------------------------------------ Figure 9
 
 // Evanescent memory: during the second hold the load relaxes more when the
-// second step opposes the first (paper: "stronger in the second case").
-// Measured 8.1 % (same), 61.6 % (back to 0), 14.6 % (past 0 to -1 mm).
+// second step opposes the first (paper, section 5.5: "the relaxation effect
+// is stronger in the second case"; its Figure 9 gives no numbers, so the
+// ordering is what is asserted). Measured 8.1 % (same), 61.6 % (back to 0),
+// 14.6 % (past 0 to -1 mm).
 TEST(ReportPaperFigures, Figure9OppositeSecondStepRelaxesMore) {
   const TwoStepStudy s = two_step_study();
   ASSERT_EQ(s.relaxed.size(), 3u);
   for (const TimeSeries &r : s.runs) EXPECT_EQ(r.not_converged, 0);
   const double same = s.relaxed[0], back = s.relaxed[1], past = s.relaxed[2];
-  EXPECT_GT(same, 0.03);
-  EXPECT_GT(back, 3.0 * same);
-  EXPECT_GT(past, 1.4 * same);
-  EXPECT_GT(past - same, 0.04);  // a margin of 4 points of the initial load
+  EXPECT_GT(same, 0.0);   // a hold after a loading step relaxes
+  EXPECT_GT(back, same);
+  EXPECT_GT(past, same);
   EXPECT_GT(s.F_start[0], 0.0);
   EXPECT_LT(s.F_start[1], 0.0);  // back at 0 mm the load has the opposite sign
   EXPECT_LT(s.F_start[2], 0.0);

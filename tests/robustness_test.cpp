@@ -120,8 +120,9 @@ TEST(RobustErrors, NullPointers) {
   EXPECT_EQ(rtb_evaluate(&s, nullptr, nullptr, 0.1, 1e-3, &trial, &f, &df), RTB_ERR_NULL);
   EXPECT_EQ(rtb_evaluate(&s, &p, nullptr, 0.1, 1e-3, nullptr, &f, &df), RTB_ERR_NULL);
   EXPECT_EQ(rtb_evaluate(&s, &p, nullptr, 0.1, 1e-3, &trial, nullptr, &df), RTB_ERR_NULL);
-  // trial may not alias the committed state
-  EXPECT_LT(rtb_evaluate(&s, &p, nullptr, 0.1, 1e-3, &s, &f, &df), 0);
+  // trial may not alias the committed state: a status of its own, not "NULL"
+  EXPECT_EQ(rtb_evaluate(&s, &p, nullptr, 0.1, 1e-3, &s, &f, &df), RTB_ERR_ALIAS);
+  EXPECT_EQ(rtb_evaluate_ex(&s, &p, nullptr, 0.1, 1e-3, &s, &f, &df, nullptr), RTB_ERR_ALIAS);
   EXPECT_TRUE(same_bits(s, before));
   EXPECT_TRUE(same_bits(f, kSentinel));
   EXPECT_TRUE(same_bits(df, kSentinel));
@@ -399,7 +400,9 @@ TEST(RobustErrors, StatusMessages) {
                        RTB_ERR_DT,
                        RTB_ERR_STATE,
                        RTB_ERR_OVERFLOW,
-                       RTB_ERR_SETTINGS};
+                       RTB_ERR_SETTINGS,
+                       RTB_ERR_ALIAS,
+                       RTB_ERR_CAPACITY};
   std::set<std::string> seen;
   const char *unknown = rtb_status_message(static_cast<rtb_status>(12345));
   ASSERT_NE(unknown, nullptr);
@@ -791,7 +794,9 @@ TEST(RobustInspect, CellStates) {
     for (double &o : out) o = kSentinel;
     EXPECT_EQ(rtb_cell_states(&s, out, 0), 0);
     EXPECT_TRUE(same_bits(out[0], kSentinel));
-    EXPECT_LE(rtb_cell_states(&s, out, -1), 0);  // never a positive count
+    // A negative capacity is a caller error of its own (not "NULL", not a count).
+    EXPECT_EQ(rtb_cell_states(&s, out, -1), RTB_ERR_CAPACITY);
+    EXPECT_EQ(rtb_cell_states(&s, out, -1000), RTB_ERR_CAPACITY);
     EXPECT_TRUE(same_bits(out[0], kSentinel));
   }
 }
@@ -804,6 +809,11 @@ TEST(RobustInspect, Info) {
   EXPECT_EQ(info.max_cells, RTB_MAX_CELLS);
   EXPECT_EQ(info.scalar_bytes, RTB_SCALAR_BYTES);
   EXPECT_EQ(info.scalar_bytes, static_cast<int>(sizeof(rtb_real)));
+  // The library's struct sizes: a host compiled against another header sees
+  // the mismatch at run time.
+  EXPECT_EQ(info.params_bytes, static_cast<int>(sizeof(rtb_params)));
+  EXPECT_EQ(info.state_bytes, static_cast<int>(sizeof(rtb_state)));
+  EXPECT_EQ(info.settings_bytes, static_cast<int>(sizeof(rtb_settings)));
   ASSERT_NE(info.scalar, nullptr);
   EXPECT_STREQ(info.scalar, "double");
   ASSERT_NE(info.version, nullptr);
@@ -813,9 +823,29 @@ TEST(RobustInspect, Info) {
       << "version '" << info.version << "' is not major.minor.patch";
 }
 
+// The relaxed state at x0, derived by hand (not from rtb_static_force, which
+// rtb_state_init itself calls): with every dashpot force zero, Kpa and the N
+// springs Kr are in series and carry the same force T = x0 / (1/Kpa + N/Kr);
+// the last spring ties to ground, so y_k = (N - k) T / Kr (k = 0 .. N-1), and
+// F = K0 x0 + T + k3 x0^3 + k_asym |x0| + sat_force tanh(x0 / sat_disp).
+double relaxed_force(const rtb_params &p, double x0) {
+  const double T = x0 / (1.0 / p.Kpa + p.cells / p.Kr);
+  const double sat = p.sat_force > 0.0 ? p.sat_force * std::tanh(x0 / p.sat_disp) : 0.0;
+  return p.K0 * x0 + T + p.k3 * x0 * x0 * x0 + p.k_asym * std::fabs(x0) + sat;
+}
+
+void expect_relaxed_state(const rtb_params &p, const rtb_state &s, double x0) {
+  const double T = x0 / (1.0 / p.Kpa + p.cells / p.Kr);
+  double y[RTB_MAX_CELLS];
+  ASSERT_EQ(rtb_cell_states(&s, y, RTB_MAX_CELLS), p.cells);
+  for (int k = 0; k < p.cells; ++k)
+    EXPECT_NEAR(y[k], (p.cells - k) * T / p.Kr, 1e-13 * std::fabs(x0)) << "cell " << k;
+  EXPECT_NEAR(s.force, relaxed_force(p, x0), 1e-12 * std::fabs(relaxed_force(p, x0)));
+}
+
 TEST(RobustInspect, InitAtOffsetGivesStaticForce) {
   for (double x0 : {0.37, -1.25, 1e-6, 40.0}) {
-    for (int variant = 0; variant < 3; ++variant) {
+    for (int variant = 0; variant < 4; ++variant) {
       rtb_params p = defaults();
       if (variant == 1) {
         p.k3 = 40.0;
@@ -826,31 +856,34 @@ TEST(RobustInspect, InitAtOffsetGivesStaticForce) {
         p.integrator = RTB_INTEGRATOR_BE;
         p.cells = 3;
       }
+      if (variant == 3) {  // softening spring
+        p.sat_force = 300.0;
+        p.sat_disp = 0.4;
+      }
       SCOPED_TRACE("x0 " + std::to_string(x0) + " variant " + std::to_string(variant));
       rtb_state s;
       ASSERT_EQ(rtb_state_init(&s, &p, x0), RTB_OK);
-      const double fs = rtb_static_force(&p, x0);
-      EXPECT_EQ(s.force, fs);
       EXPECT_EQ(s.x, x0);
       EXPECT_EQ(s.steps, 0);
-      // static formula, written out
-      const double chain = 1.0 / (1.0 / p.Kpa + p.cells / p.Kr);
-      EXPECT_NEAR(fs, p.K0 * x0 + chain * x0 + p.k3 * x0 * x0 * x0 + p.k_asym * std::fabs(x0),
-                  1e-12 * std::fabs(fs));
+      expect_relaxed_state(p, s, x0);
+      // rtb_static_force is the same closed form.
+      const double fr = relaxed_force(p, x0);
+      EXPECT_NEAR(rtb_static_force(&p, x0), fr, 1e-12 * std::fabs(fr));
       // relaxed: holding x0 keeps the static force
       double f = kSentinel;
       for (int i = 0; i < 20; ++i) ASSERT_GE(rtb_step(&s, &p, nullptr, x0, 1e-3, &f), 0);
-      EXPECT_NEAR(f, fs, 1e-9 * std::fabs(fs)) << "the initial state was not at equilibrium";
+      EXPECT_NEAR(f, fr, 1e-9 * std::fabs(fr)) << "the initial state was not at equilibrium";
     }
   }
-  // STS: a state initialised at x0 is at rest; holding x0 keeps its force
+  // STS: initialised at x0 every friction element is unloaded (the same
+  // relaxed chain); holding x0 keeps them stuck and the force unchanged.
   rtb_params p = defaults(RTB_MODEL_STS);
   rtb_state s;
   ASSERT_EQ(rtb_state_init(&s, &p, 0.5), RTB_OK);
-  const double f_init = s.force;
+  expect_relaxed_state(p, s, 0.5);
   double f = kSentinel;
   ASSERT_GE(rtb_step(&s, &p, nullptr, 0.5, 1e-3, &f), 0);
-  EXPECT_NEAR(f, f_init, 1e-9 * std::fabs(f_init));
+  EXPECT_NEAR(f, relaxed_force(p, 0.5), 1e-12 * relaxed_force(p, 0.5));
 }
 
 }  // namespace

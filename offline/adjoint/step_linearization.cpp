@@ -43,13 +43,7 @@ StageLin stage_lin(const rtb_params &p, const StageView &st) {
 // Stage matrix A = I + h D K (transpose = false) or A^T = I + h K D.
 void stage_matrix(const rtb_params &p, const StageView &st, const double *D, bool transpose,
                   double *lo, double *di, double *up) {
-  const int n = p.cells;
-  for (int k = 0; k < n; ++k) {
-    di[k] = 1.0 + st.h * D[k] * rtb_chain_diag(k, p.Kpa, p.Kr);
-    const int l = transpose ? k - 1 : k, u = transpose ? k + 1 : k;
-    lo[k] = k > 0 ? -st.h * D[l] * p.Kr : 0.0;
-    up[k] = k + 1 < n ? -st.h * D[u] * p.Kr : 0.0;
-  }
+  rtb_stage_matrix(p.cells, st.h, D, p.Kpa, p.Kr, transpose ? 1 : 0, lo, di, up);
 }
 
 // (dK/dKr Y)_k: the chain pattern with unit Kr and no Kpa.

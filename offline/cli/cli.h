@@ -47,6 +47,8 @@ int run_diagnose(int argc, char **argv);
 int run_demo(int argc, char **argv);
 int run_paper_figures(int argc, char **argv);
 int run_report(int argc, char **argv);
+int run_header(int argc, char **argv);
+int run_dynstiff(int argc, char **argv);
 
 // The table, in display order.
 const std::vector<Subcommand> &subcommands();

@@ -8,6 +8,7 @@
 
 #include "cli/cli.h"
 #include "report/paper_figures.h"
+#include "report/sine_tests_page.h"
 #include "report/study.h"
 #include "rtb_offline.h"
 
@@ -22,7 +23,7 @@ int run_report(int argc, char **argv) {
       {
           {"data-dir", "DIR", "the measured data (default ../shared/data)"},
           {"out-dir", "DIR", "output directory (default docs/results)"},
-          {"only", "NAME", "friction_damper, vhb4910 or paper (default: all)"},
+          {"only", "NAME", "friction_damper, friction_damper_sine, vhb4910 or paper (default: all)"},
           {"quiet", nullptr, "no progress on stderr"},
       },
       "Needs the data folder (see its README for provenance and licenses) and gnuplot.\n"
@@ -33,8 +34,9 @@ int run_report(int argc, char **argv) {
   const std::string out = a.get("out-dir", "docs/results");
   const std::string only = a.get("only", "");
   const bool quiet = a.has("quiet");
-  if (!only.empty() && only != "friction_damper" && only != "vhb4910" && only != "paper")
-    throw UsageError("--only must be friction_damper, vhb4910 or paper");
+  if (!only.empty() && only != "friction_damper" && only != "friction_damper_sine" &&
+      only != "vhb4910" && only != "paper")
+    throw UsageError("--only must be friction_damper, friction_damper_sine, vhb4910 or paper");
   struct stat st{};
   if (only != "paper" && (stat(data.c_str(), &st) != 0 || !S_ISDIR(st.st_mode)))
     throw InputError("the measured data folder '" + data +
@@ -46,6 +48,10 @@ int run_report(int argc, char **argv) {
     write_paper_figures(out, &md);
     write_file_atomic(out + "/paper_figures.md", md);
     if (!quiet) std::fprintf(stderr, "report: paper figures written\n");
+  }
+  if (only.empty() || only == "friction_damper_sine") {
+    write_sine_tests_page(data, out, quiet);
+    if (!quiet) std::fprintf(stderr, "report: friction damper sine tests written\n");
   }
   for (const StudySpec &s : {friction_damper_study(), vhb4910_study()}) {
     if (!only.empty() && only != s.name) continue;

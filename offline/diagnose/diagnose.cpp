@@ -251,8 +251,11 @@ std::string verdict_text(const DiagnoseResult &R, const DiagnoseOptions &opt) {
   std::snprintf(g, sizeof g, " (gain %.0f%%)", 100.0 * R.gain);
   v += g;
   if (!R.causes.empty() && R.residual_above_floor) {
-    std::snprintf(g, sizeof g, "; the remaining residual is %.1fx the noise floor: ",
-                  R.extended_error_holdout / std::max(R.floor.error_holdout, 1e-300));
+    const double ratio = R.extended_error_holdout / std::max(R.floor.error_holdout, 1e-300);
+    // A low-passed force (real-data preprocessing) has no white noise left:
+    // then the floor says nothing and only the signature is reported.
+    if (ratio < 1000.0) std::snprintf(g, sizeof g, "; the remaining residual is %.1fx the noise floor: ", ratio);
+    else std::snprintf(g, sizeof g, "; remaining residual (no white noise in the force to set a floor, e.g. low-passed data): ");
     v += g + R.signature.text;
   }
   (void)opt;

@@ -111,11 +111,13 @@ ExtFitResult fit_extended(const std::vector<Record> &recs, const ExtModel &start
     std::vector<Eigen::RowVectorXd> rows;
     try {
       if (rtb_params_validate(&m.p) != RTB_OK) throw std::runtime_error("invalid");
-      Eigen::VectorXd scale(nt);
-      scale.head(P) = tf.dp_dtheta(th.head(P));
+      // d(natural)/d(theta): the parameter block (with the k_asym clamp's
+      // coupling to K0) and the diagonal of the delay/offset coordinates.
+      Eigen::MatrixXd dn = Eigen::MatrixXd::Zero(nt, nt);
+      dn.topLeftCorner(P, P) = tf.jacobian(th.head(P), start.p);
       Eigen::Index c = P;
-      if (spec.fit_delay) scale[c++] = m.delay;
-      if (spec.fit_offset) scale[c] = spec.offset_scale;
+      if (spec.fit_delay) { dn(c, c) = m.delay; ++c; }
+      if (spec.fit_offset) dn(c, c) = spec.offset_scale;
       for (const Record &rec : recs) {
         Eigen::VectorXd F;
         Eigen::MatrixXd J;
@@ -125,7 +127,7 @@ ExtFitResult fit_extended(const std::vector<Record> &recs, const ExtModel &start
           if (!(w[j] > 0.0)) continue;
           const double q = s * std::sqrt(w[j]);
           rv.push_back(q * (F[(Eigen::Index)j] - rec.F[j]));
-          if (jac) rows.push_back(q * J.row((Eigen::Index)j).cwiseProduct(scale.transpose()));
+          if (jac) rows.push_back(q * J.row((Eigen::Index)j) * dn);
         }
       }
     } catch (const std::runtime_error &) {
@@ -207,7 +209,10 @@ ExtFitResult fit_extended(const std::vector<Record> &recs, const ExtModel &start
   if (spec.fit_offset) out.value[c] = out.model.offset;
 
   // Standard deviations from the Gauss-Newton information in natural units
-  // (white-noise sandwich as in identify.cpp).
+  // (white-noise sandwich as in identify.cpp). Dividing by each coordinate's
+  // own slope undoes the Jacobian exactly except at the k_asym clamp, where
+  // k_asym's column is 0 (it sits on its bound: infinite deviation) and K0's
+  // moves along the bound.
   Eigen::VectorXd r;
   Eigen::MatrixXd Jt;
   obj.residuals(o.theta, r, &Jt);

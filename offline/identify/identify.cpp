@@ -45,9 +45,7 @@ IdentifyResult identify(const std::vector<Record> &recs, const rtb_params &start
     ++fwd;
     if (grad) {
       ++adj;
-      const Eigen::VectorXd d = tf.dp_dtheta(th);
-      grad->resize(th.size());
-      for (Eigen::Index i = 0; i < th.size(); ++i) (*grad)[i] = m.grad[tf.free[i]] * d[i] / J0;
+      *grad = tf.theta_gradient(m.grad, th, start) / J0;
     }
     return m.J / J0;
   };
@@ -63,9 +61,10 @@ IdentifyResult identify(const std::vector<Record> &recs, const rtb_params &start
     ++fwd;
     const double s = 1.0 / std::sqrt(J0);
     r *= s;
+    const Eigen::MatrixXd dp = tf.jacobian(th, start);
     if (jac) {
       tan += (int)tf.free.size();
-      *jac = (*jac) * tf.dp_dtheta(th).asDiagonal() * s;
+      *jac = (*jac) * dp * s;
     }
     // Tikhonov rows R (p - p0), eq. (11).
     for (size_t i = 0; i < tf.free.size(); ++i) {
@@ -75,8 +74,7 @@ IdentifyResult identify(const std::vector<Record> &recs, const rtb_params &start
       r[r.size() - 1] = s * opt.misfit.R[id] * (param_get(p, id) - opt.misfit.p0[id]);
       if (jac) {
         jac->conservativeResize(jac->rows() + 1, Eigen::NoChange);
-        jac->row(jac->rows() - 1).setZero();
-        (*jac)(jac->rows() - 1, (Eigen::Index)i) = s * opt.misfit.R[id] * tf.dp_dtheta(th)[i];
+        jac->row(jac->rows() - 1) = s * opt.misfit.R[id] * dp.row((Eigen::Index)i);
       }
     }
   };

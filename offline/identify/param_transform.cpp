@@ -143,6 +143,34 @@ Eigen::VectorXd ParamTransform::dp_dtheta(const Eigen::VectorXd &th) const {
   return d;
 }
 
+Eigen::MatrixXd ParamTransform::jacobian(const Eigen::VectorXd &th, const rtb_params &base) const {
+  const Eigen::VectorXd d = dp_dtheta(th);
+  Eigen::MatrixXd J = d.asDiagonal();
+  auto index_of = [&](ParamId id) {
+    for (size_t i = 0; i < free.size(); ++i)
+      if (free[i] == id) return (Eigen::Index)i;
+    return (Eigen::Index)-1;
+  };
+  const Eigen::Index ia = index_of(P_k_asym);
+  if (ia < 0) return J;
+  // The same test as to_params: raw k_asym against the mapped K0.
+  const double raw = th[ia] * scale[P_k_asym];
+  const double K0 = to_params(th, base).K0;
+  if (!(std::fabs(raw) > K0)) return J;
+  J(ia, ia) = 0.0;
+  const Eigen::Index i0 = index_of(P_K0);
+  if (i0 >= 0) J(ia, i0) = std::copysign(1.0, raw) * d[i0];
+  return J;
+}
+
+Eigen::VectorXd ParamTransform::theta_gradient(const std::array<double, P_COUNT> &dJ_dp,
+                                               const Eigen::VectorXd &theta,
+                                               const rtb_params &base) const {
+  Eigen::VectorXd g(theta.size());
+  for (size_t i = 0; i < free.size(); ++i) g[(Eigen::Index)i] = dJ_dp[free[i]];
+  return jacobian(theta, base).transpose() * g;
+}
+
 Eigen::VectorXd ParamTransform::lower() const {
   Eigen::VectorXd lo = Eigen::VectorXd::Constant((Eigen::Index)free.size(), -INFINITY);
   for (size_t i = 0; i < free.size(); ++i)

@@ -43,8 +43,18 @@ struct ParamTransform {
                  double stiffness_cap = 0.0);
   Eigen::VectorXd to_theta(const rtb_params &p) const;
   rtb_params to_params(const Eigen::VectorXd &theta, const rtb_params &base) const;
-  // dp_i / dtheta_i at theta (diagonal of the Jacobian).
+  // dp_i / dtheta_i at theta of each coordinate's own map (the diagonal of
+  // the Jacobian before the |k_asym| <= K0 clamp).
   Eigen::VectorXd dp_dtheta(const Eigen::VectorXd &theta) const;
+  // The whole Jacobian dp_free / dtheta of to_params(theta, base): the
+  // diagonal above, except where to_params clamps k_asym to +-K0; there
+  // k_asym follows K0 (d k_asym / d theta_K0 = +-dK0/dtheta_K0) and not its
+  // own coordinate (0), so gradients through the clamp are exact.
+  Eigen::MatrixXd jacobian(const Eigen::VectorXd &theta, const rtb_params &base) const;
+  // Chain rule: dJ/dtheta from dJ/dp (every ParamId) at theta, through the
+  // whole Jacobian above (exact at the k_asym clamp).
+  Eigen::VectorXd theta_gradient(const std::array<double, P_COUNT> &dJ_dp,
+                                 const Eigen::VectorXd &theta, const rtb_params &base) const;
   // The box on theta (-inf/+inf where unbounded), for OptOptions.
   Eigen::VectorXd lower() const;
   Eigen::VectorXd upper() const;

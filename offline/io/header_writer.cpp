@@ -46,10 +46,17 @@ const char *const kLibraryNames[] = {
     "RTB_ERR_ABI", "RTB_ERR_MODEL", "RTB_ERR_CELLS", "RTB_ERR_PARAM_NONFINITE",
     "RTB_ERR_PARAM_RANGE", "RTB_ERR_ALPHA", "RTB_ERR_RESERVED", "RTB_ERR_INPUT", "RTB_ERR_DT",
     "RTB_ERR_STATE", "RTB_ERR_OVERFLOW", "RTB_ERR_SETTINGS", "RTB_MODEL_RT", "RTB_MODEL_STS",
-    "RTB_INTEGRATOR_SDIRK2", "RTB_INTEGRATOR_BE", "RT_BUSHING_H"};
+    "RTB_INTEGRATOR_SDIRK2", "RTB_INTEGRATOR_BE", "RT_BUSHING_H", "rtb_step_info", "rtb_step_ex",
+    "rtb_evaluate_ex", "RTB_ERR_ALIAS", "RTB_ERR_CAPACITY", "RTB_API", "RTB_STACK_FRAME_MAX",
+    "RTB_STACK_DEPTH_MAX",
+    // six-axis section
+    "rtb_axis", "rtb_bushing6_params", "rtb_bushing6_state", "rtb_bushing6_params_default",
+    "rtb_bushing6_validate", "rtb_bushing6_init", "rtb_bushing6_evaluate", "rtb_bushing6_commit",
+    "rtb_bushing6_step", "rtb_axis_name", "RTB_AXES", "RTB_AXIS_X", "RTB_AXIS_Y", "RTB_AXIS_Z",
+    "RTB_AXIS_RX", "RTB_AXIS_RY", "RTB_AXIS_RZ"};
 
-// Text safe inside a /* */ comment: no comment delimiters, no trigraphs, no
-// control characters.
+}  // namespace
+
 std::string comment_safe(const std::string &s) {
   std::string out;
   out.reserve(s.size());
@@ -69,6 +76,8 @@ std::string comment_safe(const std::string &s) {
   while (!out.empty() && (out.back() == ' ' || out.back() == '\\')) out.pop_back();
   return out;
 }
+
+namespace {
 
 std::string fmt(const char *f, double v) {
   char buf[64];
@@ -215,9 +224,23 @@ std::string emit_parameter_header(const rtb_params &p, const HeaderInfo &info) {
   line("");
   line("#include \"rt_bushing.h\"");
   line("");
+  h += layout_checks(N, p.cells);
+  line("");
+  h += "static const rtb_params " + N + " = " + params_initializer(p, info.std_devs, "") + ";\n";
+  line("");
+  line("#endif /* " + guard + " */");
+  return h;
+}
+
+std::string layout_checks(const std::string &N, int cells) {
+  std::string h;
+  auto line = [&](const std::string &s) {
+    h += s;
+    h += '\n';
+  };
   line("/* Compile-time checks (C99 and C++): fail to compile against a library");
   line(" * whose parameter layout differs from the one this file was written for. */");
-  line("typedef char " + N + "_check_abi[(RTB_ABI_VERSION == " + std::to_string(p.abi_version) +
+  line("typedef char " + N + "_check_abi[(RTB_ABI_VERSION == " + std::to_string(RTB_ABI_VERSION) +
        ") ? 1 : -1];");
   line("typedef char " + N + "_check_scalar[(RTB_SCALAR_BYTES == " +
        std::to_string(sizeof(rtb_real)) + ") ? 1 : -1];");
@@ -225,14 +248,22 @@ std::string emit_parameter_header(const rtb_params &p, const HeaderInfo &info) {
        ") ? 1 : -1];");
   line("typedef char " + N + "_check_reserved[(RTB_N_RESERVED == " +
        std::to_string(RTB_N_RESERVED) + ") ? 1 : -1];");
-  line("typedef char " + N + "_check_cells[(RTB_MAX_CELLS >= " + std::to_string(p.cells) +
+  line("typedef char " + N + "_check_cells[(RTB_MAX_CELLS >= " + std::to_string(cells) +
        ") ? 1 : -1];");
-  line("");
+  return h;
+}
 
-  // ---- the initializer, in the field order of struct rtb_params
-  line("static const rtb_params " + N + " = {");
+// The braced initializer, in the field order of struct rtb_params.
+std::string params_initializer(const rtb_params &p, const std::map<std::string, double> &std_devs,
+                               const std::string &indent) {
+  std::string h = "{\n";
+  auto line = [&](const std::string &s) {
+    h += indent + s;
+    h += '\n';
+  };
   line("  " + std::to_string(p.abi_version) + ", /* abi_version */");
-  line(std::string("  ") + (rt ? "RTB_MODEL_RT" : "RTB_MODEL_STS") + ", /* model */");
+  line(std::string("  ") + (p.model == RTB_MODEL_RT ? "RTB_MODEL_RT" : "RTB_MODEL_STS") +
+       ", /* model */");
   line("  " + std::to_string(p.cells) + ", /* cells */");
   line(std::string("  ") +
        (p.integrator == RTB_INTEGRATOR_BE ? "RTB_INTEGRATOR_BE" : "RTB_INTEGRATOR_SDIRK2") +
@@ -240,13 +271,12 @@ std::string emit_parameter_header(const rtb_params &p, const HeaderInfo &info) {
   for (const Field &f : kRealFields) {
     const double v = p.*(f.member);
     std::string c = "  " + hexf(v) + ", /* " + f.name + " = " + dec(v);
-    const auto sd = info.std_devs.find(f.name);
-    if (sd != info.std_devs.end()) c += " (sd " + short_dec(sd->second) + ")";
+    const auto sd = std_devs.find(f.name);
+    if (sd != std_devs.end()) c += " (sd " + short_dec(sd->second) + ")";
     c += std::string(": ") + f.note + " */";
     line(c);
   }
-  std::string res = "  { /* reserved[" + std::to_string(RTB_N_RESERVED) + "], zero */";
-  line(res);
+  line("  { /* reserved[" + std::to_string(RTB_N_RESERVED) + "], zero */");
   for (int i = 0; i < RTB_N_RESERVED; i += 4) {
     std::string r = "   ";
     for (int k = i; k < i + 4 && k < RTB_N_RESERVED; ++k)
@@ -254,9 +284,7 @@ std::string emit_parameter_header(const rtb_params &p, const HeaderInfo &info) {
     line(r);
   }
   line("  }");
-  line("};");
-  line("");
-  line("#endif /* " + guard + " */");
+  h += indent + "}";
   return h;
 }
 

@@ -43,6 +43,30 @@ bool is_valid_header_name(const std::string &name, std::string *why = nullptr);
 // rtb_params_validate rejects.
 std::string emit_parameter_header(const rtb_params &p, const HeaderInfo &info);
 
+// ---- six axes (bushing6_header.cpp)
+struct Bushing6HeaderInfo {
+  std::string name;                       // C identifier of the constant (validated)
+  std::string tool_version;
+  std::string sources[RTB_AXES];          // per axis, e.g. "fx.json (sha256 ...)"; "" = off
+  std::vector<std::string> provenance;    // free-form lines
+};
+
+// `static const rtb_bushing6_params NAME = {...};`, C99 and C++, exact to the
+// bit, no timestamp. An axis that is off carries the section 3.4 defaults
+// (ignored by the library; a host that switches it on gets a sane bushing).
+// Throws InputError for an invalid name or an active axis that does not validate.
+std::string emit_bushing6_header(const rtb_bushing6_params &p, const Bushing6HeaderInfo &info);
+
+// ---- building blocks shared by both headers (header_writer.cpp)
+// Text safe inside a /* */ comment: no comment delimiters, no trigraphs, no
+// control characters.
+std::string comment_safe(const std::string &s);
+// The typedef-array compile-time checks of ABI, scalar, reserved slots and capacity.
+std::string layout_checks(const std::string &name, int max_cells_used);
+// "{ ... }" of one rtb_params, every line after the first prefixed by indent.
+std::string params_initializer(const rtb_params &p, const std::map<std::string, double> &std_devs,
+                               const std::string &indent);
+
 }  // namespace rtb
 
 #endif

@@ -185,7 +185,7 @@ rtb_params params_from_json(const nlohmann::json &doc, const std::string &origin
   return p;
 }
 
-rtb_params params_from_json_text(const std::string &text, const std::string &origin) {
+nlohmann::json parse_json_text(const std::string &text, const std::string &origin) {
   nlohmann::json doc;
   try {
     doc = nlohmann::json::parse(text);
@@ -198,8 +198,26 @@ rtb_params params_from_json_text(const std::string &text, const std::string &ori
     const size_t colon = what.find(": ", what.find("parse error"));
     if (colon != std::string::npos) what = what.substr(colon + 2);
     throw InputError(origin + ":" + std::to_string(line) + ": invalid JSON: " + what);
+  } catch (const nlohmann::json::exception &e) {
+    // Not a syntax error but a value the parser cannot hold (a number
+    // literal beyond double range: out_of_range.406), found by fuzzing. Its
+    // message quotes the literal; name the line where it first appears.
+    std::string what = e.what();
+    const size_t q0 = what.find('\''), q1 = what.rfind('\'');
+    size_t line = 1;
+    if (q0 != std::string::npos && q1 > q0) {
+      const size_t at = text.find(what.substr(q0 + 1, q1 - q0 - 1));
+      for (size_t i = 0; at != std::string::npos && i < at; ++i) line += text[i] == '\n';
+    }
+    const size_t tag = what.find("] ");
+    if (tag != std::string::npos) what = what.substr(tag + 2);
+    throw InputError(origin + ":" + std::to_string(line) + ": invalid JSON: " + what);
   }
-  return params_from_json(doc, origin);
+  return doc;
+}
+
+rtb_params params_from_json_text(const std::string &text, const std::string &origin) {
+  return params_from_json(parse_json_text(text, origin), origin);
 }
 
 rtb_params read_params_json(const std::string &path) {

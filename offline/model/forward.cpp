@@ -106,8 +106,7 @@ StepView Trajectory::step(const rtb_params &p, const DriveGrid &g, size_t i) con
 Trajectory run_forward(const rtb_params &p, const DriveGrid &grid, bool keep_trace, double tol) {
   rtb_settings set;
   rtb_settings_default(&set);
-  set.tol = tol;
-  set.max_iter = 100;
+  if (tol > 0.0) set.tol = tol;
   Trajectory tr;
   tr.first_sample = grid.first_sample;
   tr.n_stages = rtb_integrator_stages(&p);

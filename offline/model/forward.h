@@ -68,9 +68,12 @@ struct Trajectory {
 };
 
 // Run the stepper over the drive grid. keep_trace=false stores forces only.
-// Throws std::runtime_error (with the step index) on a stepper error.
+// Settings are the library's defaults (rtb_settings_default: what runs in a
+// controller that passes NULL), with the Newton tolerance replaced by `tol`
+// when tol > 0. Throws std::runtime_error (with the step index) on a stepper
+// error.
 Trajectory run_forward(const rtb_params &p, const DriveGrid &grid, bool keep_trace,
-                       double tol = 1e-12);
+                       double tol = 0.0);
 
 }  // namespace rtb
 

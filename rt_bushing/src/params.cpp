@@ -130,6 +130,8 @@ extern "C" const char *rtb_status_message(rtb_status status) {
     case RTB_ERR_STATE: return "state is not initialised for these parameters";
     case RTB_ERR_OVERFLOW: return "the step would produce a non-finite value";
     case RTB_ERR_SETTINGS: return "settings out of range";
+    case RTB_ERR_ALIAS: return "an output struct aliases an input (rtb_evaluate: trial == s)";
+    case RTB_ERR_CAPACITY: return "a capacity argument is negative";
   }
   return "unknown status";
 }
@@ -138,7 +140,10 @@ extern "C" void rtb_get_info(rtb_info *info) {
   if (!info) return;
   info->abi_version = RTB_ABI_VERSION;
   info->max_cells = RTB_MAX_CELLS;
-  info->scalar_bytes = (int)sizeof(rtb_real);
+  info->scalar_bytes = (int32_t)sizeof(rtb_real);
+  info->params_bytes = (int32_t)sizeof(rtb_params);
+  info->state_bytes = (int32_t)sizeof(rtb_state);
+  info->settings_bytes = (int32_t)sizeof(rtb_settings);
   info->version = RTB_VERSION_STRING;
 #ifdef RTB_SINGLE
   info->scalar = "float";
@@ -158,6 +163,7 @@ extern "C" rtb_real rtb_static_force(const rtb_params *p, rtb_real x) {
 extern "C" int rtb_cell_states(const rtb_state *s, rtb_real *out, int cap) {
   if (!s || !out) return RTB_ERR_NULL;
   if (!s->initialised) return RTB_ERR_STATE;
+  if (cap < 0) return RTB_ERR_CAPACITY;
   const int n = s->cells < cap ? s->cells : cap;
   for (int k = 0; k < n; ++k) out[k] = s->y[k];
   return n;

@@ -25,7 +25,9 @@ typedef struct rtb_stage {
   rtb_real y[RTB_MAX_CELLS];     /* stage cell DOFs [length] */
   rtb_real D[RTB_MAX_CELLS];     /* phi'(f) at the returned pair [length/(force time)] */
   int iterations;
+  int backtracks;              /* line-search halvings over all iterations */
   int converged;
+  rtb_real residual;           /* final |H|_inf / scale (relative residual) */
 } rtb_stage;
 
 /* Solve one stage with Newton's method (per-DOF variable switching and a line
@@ -69,12 +71,31 @@ rtb_status rtb_chain_advance_from(const rtb_params *p, const rtb_settings *set,
 rtb_status rtb_sts_solve(const rtb_params *p, const rtb_real *y_old, rtb_real xb_new,
                          rtb_real *y_new, int *iterations, rtb_real *dy1_dxb);
 
+/* Iteration caps of the bounded loops: the STS active set (the method
+ * terminates for an M-matrix; the cap only guards the bound) and the
+ * clearance search (responses after the two bracket ends). The *_capped
+ * variants take the cap as an argument so that tests can reach the
+ * give-up paths; the library always uses these constants. */
+#define RTB_STS_MAX_ITERS(n) (2 * (n) + 5)
+#define RTB_BACKLASH_ITERS 30
+rtb_status rtb_sts_solve_capped(const rtb_params *p, const rtb_real *y_old, rtb_real xb_new,
+                                rtb_real *y_new, int *iterations, rtb_real *dy1_dxb,
+                                int max_iters);
+
 /* The full step with all internals exposed; rtb_evaluate is a thin wrapper.
  * `stages` may be NULL. */
 rtb_status rtb_step_detailed(const rtb_state *s, const rtb_params *p,
                              const rtb_settings *set, rtb_real x, rtb_real dt,
                              rtb_state *out, rtb_real *force, rtb_real *dforce_dx,
                              rtb_stage stages[2]);
+
+/* rtb_step_detailed with the step's cost in *info (may be NULL) and the
+ * clearance search capped at backlash_iters responses (RTB_BACKLASH_ITERS in
+ * the library; smaller only in tests). */
+rtb_status rtb_step_core(const rtb_state *s, const rtb_params *p, const rtb_settings *set,
+                         rtb_real x, rtb_real dt, rtb_state *out, rtb_real *force,
+                         rtb_real *dforce_dx, rtb_stage stages[2], rtb_step_info *info,
+                         int backlash_iters);
 
 /* Validate settings (NULL = defaults) into a usable copy. */
 rtb_status rtb_settings_resolve(const rtb_settings *in, rtb_settings *out);

@@ -209,10 +209,12 @@ extern "C" rtb_status rtb_stage_solve(const rtb_params *p, const rtb_settings *s
   }
 
   st->converged = 0;
+  st->backtracks = 0;
   int it = 0;
+  rtb_real scale = rnorm;
   rtb_real prev_hnorm = 0.0; /* |H| before the last full (t = 1) step; 0: none yet */
   for (;; ++it) {
-    const rtb_real scale = x->fmax_abs > rnorm ? x->fmax_abs : rnorm;
+    scale = x->fmax_abs > rnorm ? x->fmax_abs : rnorm;
     if (x->hnorm <= set->tol * scale || x->hnorm <= RTB_REAL_MIN) { st->converged = 1; break; }
     if (it >= set->max_iter || *budget < ch.sweep) break;
     if (newton_solve(ch, x->D, x->H, dl) != 0) break;
@@ -231,6 +233,7 @@ extern "C" rtb_status rtb_stage_solve(const rtb_params *p, const rtb_settings *s
           x->v[k] += x->D[k] * dl[k];
           x->f[k] += dl[k];
         }
+        x->hnorm *= ratio * ratio; /* the predicted residual, reported in st */
         st->converged = 1;
         ++it;
         break;
@@ -253,7 +256,10 @@ extern "C" rtb_status rtb_stage_solve(const rtb_params *p, const rtb_settings *s
       }
       trial->fmax_abs = law_sweep(ch, trial->steep, trial->f, trial->v, trial->D, budget);
       trial->hnorm = residual(ch, trial->f, trial->v, r, trial->H, &trial->h2);
-      if (!(trial->hnorm <= RTB_REAL_MAX) || trial->h2 > (1.0 - 2e-4 * t) * x->h2) continue;
+      if (!(trial->hnorm <= RTB_REAL_MAX) || trial->h2 > (1.0 - 2e-4 * t) * x->h2) {
+        ++st->backtracks;
+        continue;
+      }
       prev_hnorm = t == 1.0 ? x->hnorm : 0.0;
       Iterate *tmp = x;
       x = trial;
@@ -273,6 +279,7 @@ extern "C" rtb_status rtb_stage_solve(const rtb_params *p, const rtb_settings *s
     if (!accepted) break;
   }
   st->iterations = it;
+  st->residual = x->hnorm <= RTB_REAL_MIN ? 0.0 : x->hnorm / scale; /* scale > 0 when H != 0 */
   for (int k = 0; k < n; ++k) {
     st->f[k] = x->f[k];
     st->v[k] = x->v[k];

@@ -78,13 +78,9 @@ static void stage_tangent(const rtb_params *p, const rtb_stage *st, const rtb_re
   const int n = p->cells;
   if (n < 1 || n > RTB_MAX_CELLS) return;
   rtb_real lo[RTB_MAX_CELLS], di[RTB_MAX_CELLS], up[RTB_MAX_CELLS], work[RTB_MAX_CELLS];
-  for (int k = 0; k < n; ++k) {
-    const rtb_real D = st->D[k]; /* phi' at the stage's pair, from its last law sweep */
-    di[k] = 1.0 + st->h * D * rtb_chain_diag(k, p->Kpa, p->Kr);
-    lo[k] = k > 0 ? -st->h * D * p->Kr : 0.0;
-    up[k] = k + 1 < n ? -st->h * D * p->Kr : 0.0;
-    dy[k] = (dc ? dc[k] : 0.0) + (k == 0 ? st->h * D * db1 : 0.0);
-  }
+  /* st->D: phi' at the stage's pair, from its last law sweep */
+  for (int k = 0; k < n; ++k) dy[k] = (dc ? dc[k] : 0.0) + (k == 0 ? st->h * st->D[k] * db1 : 0.0);
+  rtb_stage_matrix(n, st->h, st->D, p->Kpa, p->Kr, 0, lo, di, up);
   rtb_tridiag_solve(n, lo, di, up, dy, work);
 }
 
@@ -114,7 +110,19 @@ struct Response {
   rtb_real z, z_spec[RTB_MAX_BRANCHES];
   rtb_real F, dF;  /* force and total dF/dxb */
   int iterations;
+  int backtracks;
+  rtb_real residual;  /* max relative stage residual (RT) */
   rtb_status status;
+};
+
+/* Work of every response of a step, for rtb_step_info. */
+struct Cost {
+  int iterations, backtracks, responses;
+  void add(const Response &r) {
+    iterations += r.iterations;
+    backtracks += r.backtracks;
+    ++responses;
+  }
 };
 
 /* budget: the step's work left (RTB_STEP_WORK). warm: r holds an earlier
@@ -122,9 +130,11 @@ struct Response {
  * new one (closer than the last step's end). */
 void respond(const rtb_state *s, const rtb_params *p, const rtb_settings *set,
              const rtb_spectrum *sp, rtb_real xb, rtb_real dt, bool tangent, int *budget,
-             Response *r, bool warm = false) {
+             Response *r, Cost *cost, bool warm = false) {
   const int n = p->cells;
   rtb_real dy1 = 0.0;
+  r->backtracks = 0;
+  r->residual = 0.0;
   if (p->model == RTB_MODEL_RT) {
     const bool hint = warm && r->status >= 0;
     r->status = rtb_chain_advance_from(p, set, s, xb, dt, hint ? r->st[0].f : NULL,
@@ -132,11 +142,14 @@ void respond(const rtb_state *s, const rtb_params *p, const rtb_settings *set,
     const int ns = rtb_integrator_stages(p);
     memcpy(r->y, r->st[ns - 1].y, sizeof(rtb_real) * n);
     r->iterations = r->st[0].iterations + (ns == 2 ? r->st[1].iterations : 0);
+    r->backtracks = r->st[0].backtracks + (ns == 2 ? r->st[1].backtracks : 0);
+    r->residual = fmax(r->st[0].residual, ns == 2 ? r->st[1].residual : 0.0);
     if (tangent && r->status >= 0) dy1 = chain_dy1_dxb(p, r->st, dt);
   } else {
     r->status = rtb_sts_solve(p, s->y, xb, r->y, &r->iterations, tangent ? &dy1 : NULL);
     *budget -= n; /* no law: one unit per cell and solve bounds the clearance loop */
   }
+  cost->add(*r);
   /* Branch memories; z evolves whenever its tau is set, so dF/dk is exact at k = 0. */
   rtb_maxwell_lin m;
   rtb_real dz = 0.0, dF_branches = 0.0;
@@ -180,23 +193,26 @@ Gap gap_of(const rtb_params *p, rtb_real x) {
  * carries no load, so xb = clamp(xb_free, lo, hi) with F(xb_free) = 0; F is
  * increasing in xb, so a safeguarded Newton/bisection finds it (for hi = inf
  * the bracket is first extended by Newton steps). Held end: xb stays where it
- * was, clamped into [lo, hi]. Bounded: at most 3 + RTB_BACKLASH_ITERS +
- * RTB_SLACK_EXTEND responses per step, and by the step's work budget: each
- * response takes its law evaluations from it, a new one starts only while a
- * sweep is left (the last response, at *xb_out, is then kept). Returns
- * RTB_NOT_CONVERGED if the budget ended the search before F(xb) = 0. */
-#define RTB_BACKLASH_ITERS 30
+ * was, clamped into [lo, hi]. Bounded: at most 3 + iters + RTB_SLACK_EXTEND
+ * responses per step (iters = RTB_BACKLASH_ITERS in the library), and by the
+ * step's work budget: each response takes its law evaluations from it, and a
+ * new one starts only while a sweep is left. The response in *r is always the
+ * one at *xb_out (state, force and tangent agree); a search ended by its
+ * iteration cap or by the budget returns RTB_NOT_CONVERGED and leaves its
+ * relative force residual in *residual. */
 #define RTB_SLACK_EXTEND 8
 static int phase_at(const Gap &g, rtb_real xb) { return xb == g.lo ? 1 : (xb == g.hi ? -1 : 0); }
 
 static rtb_status resolve_gap(const rtb_state *s, const rtb_params *p, const rtb_settings *set,
-                              const rtb_spectrum *sp, rtb_real x, rtb_real dt, int *budget,
-                              Response *r, rtb_real *xb_out, int *contact) {
+                              const rtb_spectrum *sp, rtb_real x, rtb_real dt, int iters,
+                              int *budget, Response *r, Cost *cost, rtb_real *xb_out,
+                              int *contact, rtb_real *residual) {
   const Gap g = gap_of(p, x);
   const int sweep = p->cells * rtb_law_unit(p);
   rtb_real xb = fmin(fmax(s->xb, g.lo), g.hi);
-  respond(s, p, set, sp, xb, dt, true, budget, r);
+  respond(s, p, set, sp, xb, dt, true, budget, r, cost);
   *xb_out = xb;
+  *residual = 0.0;
   if (g.held) { *contact = xb == g.lo ? 1 : (xb == g.hi ? -1 : 3); return RTB_OK; }
   *contact = phase_at(g, xb);
   if (r->status < 0) return RTB_OK;
@@ -207,7 +223,7 @@ static rtb_status resolve_gap(const rtb_state *s, const rtb_params *p, const rtb
   if (r->F > 0.0) {
     b = xb;
     if (xb != g.lo) {
-      respond(s, p, set, sp, g.lo, dt, true, budget, r); /* cold: as without a gap */
+      respond(s, p, set, sp, g.lo, dt, true, budget, r, cost); /* cold: as without a gap */
       *xb_out = g.lo;
       *contact = 1;
       if (r->status < 0 || r->F >= 0.0) return RTB_OK;
@@ -215,7 +231,7 @@ static rtb_status resolve_gap(const rtb_state *s, const rtb_params *p, const rtb
   } else {
     a = xb;
     if (isfinite(g.hi)) {
-      respond(s, p, set, sp, g.hi, dt, true, budget, r); /* cold: as without a gap */
+      respond(s, p, set, sp, g.hi, dt, true, budget, r, cost); /* cold: as without a gap */
       *xb_out = g.hi;
       *contact = -1;
       if (r->status < 0 || r->F <= 0.0) return RTB_OK;
@@ -227,31 +243,34 @@ static rtb_status resolve_gap(const rtb_state *s, const rtb_params *p, const rtb
         if (*budget < sweep) return RTB_NOT_CONVERGED;
         const rtb_real step = dFt > 0.0 ? -Ft / dFt : fabs(t - x) + p->backlash + 1e-9;
         t += 2.0 * step * (rtb_real)(1 << e);
-        respond(s, p, set, sp, t, dt, true, budget, r, true);
+        respond(s, p, set, sp, t, dt, true, budget, r, cost, true);
         *xb_out = t;
         *contact = 0;
         if (r->status < 0) break;
         if (r->F > 0.0) b = t; else { a = t; Ft = r->F; dFt = r->dF; }
       }
-      if (!isfinite(b)) { *contact = 0; return RTB_OK; } /* best effort, bounded */
+      if (!isfinite(b)) return RTB_NOT_CONVERGED; /* best effort, bounded: r is at a */
     }
   }
   *contact = 0;
   const rtb_real scale = fabs(p->K0) + p->Kpa;
   const rtb_real width = b - a;
   xb = 0.5 * (a + b);
-  for (int it = 0; it < RTB_BACKLASH_ITERS; ++it) {
+  for (int it = 0; it < iters; ++it) {
     if (*budget < sweep) return RTB_NOT_CONVERGED; /* r: the response at *xb_out */
-    respond(s, p, set, sp, xb, dt, true, budget, r, true);
+    respond(s, p, set, sp, xb, dt, true, budget, r, cost, true);
     *xb_out = xb;
-    if (r->status < 0) break;
+    if (r->status < 0) return RTB_OK; /* the caller returns r->status */
     if (r->F > 0.0) b = xb; else a = xb;
-    if (fabs(r->F) <= set->tol * scale * (fabs(xb) + width) || b - a <= 4 * RTB_REAL_EPSILON * fabs(xb))
-      break;
+    *residual = fabs(r->F) / (scale * (fabs(xb) + width));
+    if (fabs(r->F) <= set->tol * scale * (fabs(xb) + width) ||
+        b - a <= 4 * RTB_REAL_EPSILON * fabs(xb))
+      return RTB_OK;
+    if (it + 1 == iters) break; /* keep xb where r was computed */
     rtb_real nx = xb - r->F / r->dF;
     xb = (r->dF > 0.0 && nx > a && nx < b) ? nx : 0.5 * (a + b);
   }
-  return RTB_OK;
+  return RTB_NOT_CONVERGED;
 }
 
 static rtb_status check_call(const rtb_state *s, const rtb_params *p, rtb_real x, rtb_real dt) {
@@ -266,10 +285,11 @@ static rtb_status check_call(const rtb_state *s, const rtb_params *p, rtb_real x
   return RTB_OK;
 }
 
-extern "C" rtb_status rtb_step_detailed(const rtb_state *s, const rtb_params *p,
-                                        const rtb_settings *set_in, rtb_real x, rtb_real dt,
-                                        rtb_state *out, rtb_real *force, rtb_real *dforce_dx,
-                                        rtb_stage stages[2]) {
+extern "C" rtb_status rtb_step_core(const rtb_state *s, const rtb_params *p,
+                                    const rtb_settings *set_in, rtb_real x, rtb_real dt,
+                                    rtb_state *out, rtb_real *force, rtb_real *dforce_dx,
+                                    rtb_stage stages[2], rtb_step_info *info,
+                                    int backlash_iters) {
   rtb_status st = check_call(s, p, x, dt);
   if (st != RTB_OK) return st;
   rtb_settings set;
@@ -279,13 +299,16 @@ extern "C" rtb_status rtb_step_detailed(const rtb_state *s, const rtb_params *p,
   rtb_spectrum sp;
   rtb_spectrum_layout(p, &sp);
   Response r;
-  rtb_real xb = x;
+  Cost cost = {0, 0, 0};
+  rtb_real xb = x, clearance_residual = 0.0;
   int contact = 2;
   int budget = RTB_STEP_WORK;
   rtb_status clearance = RTB_OK;
   if (p->backlash > 0.0 || p->slack != 0.0)
-    clearance = resolve_gap(s, p, &set, &sp, x, dt, &budget, &r, &xb, &contact);
-  else respond(s, p, &set, &sp, xb, dt, dforce_dx != NULL, &budget, &r);
+    clearance = resolve_gap(s, p, &set, &sp, x, dt, backlash_iters, &budget, &r, &cost, &xb,
+                            &contact, &clearance_residual);
+  else
+    respond(s, p, &set, &sp, xb, dt, dforce_dx != NULL, &budget, &r, &cost);
   if (r.status < 0) return r.status;
   r.status = worse(r.status, clearance);
 
@@ -325,7 +348,25 @@ extern "C" rtb_status rtb_step_detailed(const rtb_state *s, const rtb_params *p,
   if (force) *force = F;
   if (dforce_dx) *dforce_dx = dF;
   if (stages && p->model == RTB_MODEL_RT) memcpy(stages, r.st, sizeof r.st);
+  if (info) {
+    info->iterations = cost.iterations;
+    info->backtracks = cost.backtracks;
+    info->clearance_iterations = (p->backlash > 0.0 || p->slack != 0.0) ? cost.responses : 0;
+    info->stages = p->model == RTB_MODEL_RT ? rtb_integrator_stages(p) : 1;
+    info->residual = r.residual;
+    info->clearance_residual = contact == 0 ? clearance_residual : 0.0;  /* floating end */
+    info->work = RTB_STEP_WORK - budget;
+    info->pad_ = 0;
+  }
   return r.status;
+}
+
+extern "C" rtb_status rtb_step_detailed(const rtb_state *s, const rtb_params *p,
+                                        const rtb_settings *set, rtb_real x, rtb_real dt,
+                                        rtb_state *out, rtb_real *force, rtb_real *dforce_dx,
+                                        rtb_stage stages[2]) {
+  return rtb_step_core(s, p, set, x, dt, out, force, dforce_dx, stages, NULL,
+                       RTB_BACKLASH_ITERS);
 }
 
 extern "C" rtb_status rtb_state_init(rtb_state *s, const rtb_params *p, rtb_real x0) {
@@ -353,12 +394,20 @@ extern "C" rtb_status rtb_state_init(rtb_state *s, const rtb_params *p, rtb_real
   return RTB_OK;
 }
 
+extern "C" rtb_status rtb_evaluate_ex(const rtb_state *s, const rtb_params *p,
+                                      const rtb_settings *set, rtb_real x, rtb_real dt,
+                                      rtb_state *trial, rtb_real *force, rtb_real *dforce_dx,
+                                      rtb_step_info *info) {
+  if (!s || !trial || !force) return RTB_ERR_NULL;
+  if (trial == s) return RTB_ERR_ALIAS;
+  return rtb_step_core(s, p, set, x, dt, trial, force, dforce_dx, NULL, info,
+                       RTB_BACKLASH_ITERS);
+}
+
 extern "C" rtb_status rtb_evaluate(const rtb_state *s, const rtb_params *p,
                                    const rtb_settings *set, rtb_real x, rtb_real dt,
                                    rtb_state *trial, rtb_real *force, rtb_real *dforce_dx) {
-  if (!trial || !force) return RTB_ERR_NULL;
-  if (trial == s) return RTB_ERR_NULL;
-  return rtb_step_detailed(s, p, set, x, dt, trial, force, dforce_dx, NULL);
+  return rtb_evaluate_ex(s, p, set, x, dt, trial, force, dforce_dx, NULL);
 }
 
 extern "C" rtb_status rtb_commit(rtb_state *s, const rtb_state *trial) {
@@ -368,11 +417,18 @@ extern "C" rtb_status rtb_commit(rtb_state *s, const rtb_state *trial) {
   return RTB_OK;
 }
 
-extern "C" rtb_status rtb_step(rtb_state *s, const rtb_params *p, const rtb_settings *set,
-                               rtb_real x, rtb_real dt, rtb_real *force) {
+extern "C" rtb_status rtb_step_ex(rtb_state *s, const rtb_params *p, const rtb_settings *set,
+                                  rtb_real x, rtb_real dt, rtb_real *force,
+                                  rtb_step_info *info) {
   if (!force) return RTB_ERR_NULL;
   rtb_state next;
-  rtb_status st = rtb_step_detailed(s, p, set, x, dt, &next, force, NULL, NULL);
+  rtb_status st = rtb_step_core(s, p, set, x, dt, &next, force, NULL, NULL, info,
+                                RTB_BACKLASH_ITERS);
   if (st >= 0) *s = next;
   return st;
+}
+
+extern "C" rtb_status rtb_step(rtb_state *s, const rtb_params *p, const rtb_settings *set,
+                               rtb_real x, rtb_real dt, rtb_real *force) {
+  return rtb_step_ex(s, p, set, x, dt, force, NULL);
 }

@@ -36,6 +36,20 @@ static inline rtb_real rtb_chain_diag(int k, rtb_real Kpa, rtb_real Kr) {
   return k == 0 ? Kpa + Kr : 2.0 * Kr;
 }
 
+/* The matrix of a converged stage's tangent, A = I + h D K (transpose = 0;
+ * row k carries D[k]) or its transpose I + h K D (the adjoint's), with
+ * D = dv/df of each dashpot: the one assembly the stepper's dF/dx and the
+ * offline tangent and adjoint all solve with. */
+static inline void rtb_stage_matrix(int n, rtb_real h, const rtb_real *D, rtb_real Kpa, rtb_real Kr,
+                                    int transpose, rtb_real *lo, rtb_real *di, rtb_real *up) {
+  for (int k = 0; k < n; ++k) {
+    di[k] = 1.0 + h * D[k] * rtb_chain_diag(k, Kpa, Kr);
+    const int l = transpose ? k - 1 : k, u = transpose ? k + 1 : k;
+    lo[k] = k > 0 ? -h * D[l] * Kr : 0.0;
+    up[k] = k + 1 < n ? -h * D[u] * Kr : 0.0;
+  }
+}
+
 /* out = K u for the chain stiffness. */
 static inline void rtb_chain_apply(int n, rtb_real Kpa, rtb_real Kr, const rtb_real *u, rtb_real *out) {
   for (int k = 0; k < n; ++k) {

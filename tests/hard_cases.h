@@ -1,0 +1,31 @@
+// hard_cases.h -- parameter sets and inputs where the stepper's bounded loops
+// run out of iterations (found by random search over the fuzzers' ranges),
+// shared by the tests of the give-up paths and of the settings.
+#ifndef RTB_TESTS_HARD_CASES_H
+#define RTB_TESTS_HARD_CASES_H
+
+#include "rt_bushing/rt_bushing.h"
+
+namespace rtb_test {
+
+// Near-friction dashpots (alpha = 0.0092), 25 cells, backward Euler: a jump
+// of kHardJump from rest in kHardJumpDt needs more than the default 40
+// Newton iterations, with backtracking.
+constexpr double kHardJump = -38.3139;   // [mm]
+constexpr double kHardJumpDt = 1.05089e-05;  // [s]
+inline rtb_params hard_jump_params() {
+  rtb_params p;
+  rtb_params_default(&p, RTB_MODEL_RT);
+  p.integrator = RTB_INTEGRATOR_BE;
+  p.cells = 25;
+  p.K0 = 3763.64;
+  p.Kpa = 285.836;
+  p.Kr = 33137.1;
+  p.C0 = 568.134;
+  p.alpha = 0.0091973;
+  return p;
+}
+
+}  // namespace rtb_test
+
+#endif

@@ -1,0 +1,92 @@
+// independent_diagnose_test.cpp -- the diagnosis on data it did not
+// generate (issue #10 item 8): records from the independent reference
+// generator (tests/refgen/: another integrator, its own effect definitions,
+// servo-smoothed actuator, noise on displacement and force, randomized
+// parameters and sample rates). Short records (4 s) so each case stays cheap;
+// the full sweep is tests/refgen/acceptance.sh.
+//
+// DISABLED_ cases failed on the diagnosis before the issue-#10 rewrite; the
+// lead enables them (each costs a diagnosis, about 20-60 s CPU in Release).
+#ifdef RTB_HAVE_OFFLINE
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <string>
+
+#include "offline/diagnose/diagnose.h"
+#include "refgen.h"
+
+namespace {
+
+constexpr double kDuration = 4.0;  // s per record
+
+struct Diagnosed {
+  rtb::DiagnoseResult R;
+  double noise_floor = 0.0;  // refgen's force-noise floor on the held-out records
+};
+
+Diagnosed diagnose_refgen(const std::string &effect, unsigned seed) {
+  const refgen::Scenario sc = refgen::make_scenario({effect}, seed, kDuration);
+  std::vector<rtb::Record> fit, hold;
+  std::vector<refgen::Samples> held;
+  for (size_t i = 0; i < sc.records.size(); ++i) {
+    refgen::Chain chain = sc.chain;
+    chain.seed = seed * 100ull + i;
+    const refgen::Samples s = refgen::run_record(sc.specimen, sc.records[i].cmd, chain);
+    rtb::Record r;
+    r.path = sc.records[i].name;
+    r.t = s.t;
+    r.x = s.x;
+    r.F = s.F;
+    (sc.records[i].holdout ? hold : fit).push_back(r);
+    if (sc.records[i].holdout) held.push_back(s);
+  }
+  Diagnosed d;
+  d.R = rtb::diagnose(fit, hold, rtb::DiagnoseOptions());
+  std::vector<const refgen::Samples *> hp;
+  for (const refgen::Samples &s : held) hp.push_back(&s);
+  d.noise_floor = refgen::noise_floor(hp);
+  std::printf("[refgen-diag] %-10s seed %u -> %-14s baseline held-out %.2f%% (floor %.2f%%), %.1f s\n",
+              effect.c_str(), seed, d.R.cause.c_str(), 100 * d.R.baseline_error_holdout,
+              100 * d.noise_floor, d.R.wall_seconds);
+  return d;
+}
+
+}  // namespace
+
+// Plain RT through another integrator and a real rig's chain: no effect.
+TEST(IndependentDiagnose, PlainRtIsNone) {
+  const Diagnosed d = diagnose_refgen("none", 1);
+  EXPECT_EQ(d.R.cause, "none") << d.R.verdict;
+}
+
+// A clearance whose bushing end floats free in the gap (force 0 there).
+TEST(IndependentDiagnose, FloatingClearanceIsBacklash) {
+  const Diagnosed d = diagnose_refgen("backlash", 1);
+  EXPECT_EQ(d.R.cause, "backlash") << d.R.verdict;
+}
+
+// A clearance whose bushing end is held in the gap (deformation frozen,
+// force relaxing) is a backlash too (issue #10, item 4). Before the rewrite:
+// `none`; after it (merged main ea9ffc1): `backlash`, passes.
+TEST(IndependentDiagnose, DISABLED_HeldClearanceIsBacklash) {
+  const Diagnosed d = diagnose_refgen("backlash_held", 1);
+  EXPECT_EQ(d.R.cause, "backlash") << d.R.verdict;
+}
+
+// A strip that cannot push goes slack near the end of unloading (issue #10,
+// item 6). Before the rewrite the word did not exist (8 s records: `mullins`);
+// after it (merged main ea9ffc1): `slack`, passes.
+TEST(IndependentDiagnose, DISABLED_SlackStripIsSlack) {
+  const Diagnosed d = diagnose_refgen("slack", 1);
+  EXPECT_EQ(d.R.cause, "slack") << d.R.verdict;
+}
+
+// 50 Hz mains hum on the force channel is outside the vocabulary: any
+// physical name is wrong; "none" or "unexplained" are not.
+TEST(IndependentDiagnose, MainsHumGetsNoPhysicalName) {
+  const Diagnosed d = diagnose_refgen("hum", 1);
+  EXPECT_TRUE(d.R.cause == "none" || d.R.cause == "unexplained") << d.R.verdict;
+}
+
+#endif  // RTB_HAVE_OFFLINE

@@ -1,0 +1,86 @@
+// param_transform_test.cpp -- the Jacobian dp/dtheta of the optimizers'
+// parameter map (offline/identify/param_transform.h) against central finite
+// differences of the map itself, in particular at the |k_asym| <= K0 clamp,
+// where k_asym follows K0 and no longer its own coordinate (the gradient used
+// to be taken through the unclamped slope there: wrong at the clamp).
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "identify/param_transform.h"
+
+namespace {
+
+using namespace rtb;
+
+// Central differences of to_params, column by column.
+Eigen::MatrixXd fd_jacobian(const ParamTransform &tf, const Eigen::VectorXd &th,
+                            const rtb_params &base) {
+  const Eigen::Index n = th.size();
+  Eigen::MatrixXd J(n, n);
+  for (Eigen::Index j = 0; j < n; ++j) {
+    const double h = 1e-6 * std::fmax(1.0, std::fabs(th[j]));
+    Eigen::VectorXd a = th, b = th;
+    a[j] += h;
+    b[j] -= h;
+    const rtb_params pa = tf.to_params(a, base), pb = tf.to_params(b, base);
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const ParamId id = tf.free[(size_t)i];
+      J(i, j) = (param_get(pa, id) - param_get(pb, id)) / (2 * h);
+    }
+  }
+  return J;
+}
+
+void expect_close(const Eigen::MatrixXd &A, const Eigen::MatrixXd &B, const char *what) {
+  ASSERT_EQ(A.rows(), B.rows());
+  for (Eigen::Index i = 0; i < A.rows(); ++i)
+    for (Eigen::Index j = 0; j < A.cols(); ++j)
+      EXPECT_NEAR(A(i, j), B(i, j), 1e-6 * (std::fabs(B(i, j)) + 1.0))
+          << what << " (" << i << "," << j << ")";
+}
+
+rtb_params base_params() {
+  rtb_params p;
+  rtb_params_default(&p, RTB_MODEL_RT);
+  p.K0 = 250.0;
+  p.k_asym = 100.0;
+  return p;
+}
+
+TEST(ParamTransformJacobian, InsideTheClampItIsTheDiagonal) {
+  const rtb_params p = base_params();
+  const ParamTransform tf({P_K0, P_Kpa, P_k_asym}, p, 1e6);
+  const Eigen::VectorXd th = tf.to_theta(p);
+  const Eigen::MatrixXd J = tf.jacobian(th, p);
+  expect_close(J, fd_jacobian(tf, th, p), "inside");
+  expect_close(J, Eigen::MatrixXd(tf.dp_dtheta(th).asDiagonal()), "diagonal");
+}
+
+TEST(ParamTransformJacobian, AtTheClampKasymFollowsK0) {
+  const rtb_params p = base_params();
+  const ParamTransform tf({P_K0, P_Kpa, P_k_asym}, p, 1e6);
+  for (double ratio : {1.3, -1.3}) {
+    SCOPED_TRACE(ratio);
+    Eigen::VectorXd th = tf.to_theta(p);
+    th[2] = ratio * p.K0 / tf.scale[P_k_asym];  // raw k_asym beyond +-K0
+    const rtb_params q = tf.to_params(th, p);
+    ASSERT_EQ(q.k_asym, std::copysign(q.K0, ratio)) << "the map clamps";
+    const Eigen::MatrixXd J = tf.jacobian(th, p);
+    expect_close(J, fd_jacobian(tf, th, p), "clamped");
+    EXPECT_EQ(J(2, 2), 0.0);
+    EXPECT_EQ(J(2, 0), std::copysign(tf.dp_dtheta(th)[0], ratio));
+  }
+}
+
+TEST(ParamTransformJacobian, ClampAgainstAFixedK0) {
+  const rtb_params p = base_params();
+  const ParamTransform tf({P_Kpa, P_k_asym}, p, 1e6);  // K0 not free
+  Eigen::VectorXd th = tf.to_theta(p);
+  th[1] = 2.0 * p.K0 / tf.scale[P_k_asym];
+  const Eigen::MatrixXd J = tf.jacobian(th, p);
+  expect_close(J, fd_jacobian(tf, th, p), "fixed K0");
+  EXPECT_EQ(J(1, 1), 0.0);
+}
+
+}  // namespace
