@@ -52,6 +52,39 @@ TEST(Lowpass, KeepsAConstantAndRefusesANonUniformGrid) {
   EXPECT_THROW(apply_preprocess(pp, recs, true), InputError);
 }
 
+// Decimation keeps every k-th low-passed sample (the rate the element will
+// run at) and refuses to alias: the low-pass must be below the new Nyquist.
+TEST(Decimate, KeepsEveryKthFilteredSampleAndRefusesToAlias) {
+  const double dt = 1.0 / 1024.0;
+  Preprocess pp;
+  pp.lowpass_hz = 20.0;
+  pp.decimate = 5;
+  std::vector<Record> recs = {sine_record(0.5, dt, 4.0)};
+  const Record orig = recs[0];
+  apply_preprocess(pp, recs, false);
+  const Record &d = recs[0];
+  ASSERT_EQ(d.t.size(), (orig.t.size() + 4) / 5);
+  const std::vector<double> filtered = lowpass_zero_phase(orig.F, dt, 20.0);
+  for (size_t i = 0; i < d.t.size(); ++i) {
+    ASSERT_EQ(d.t[i], orig.t[5 * i]);
+    ASSERT_EQ(d.x[i], orig.x[5 * i]);
+    ASSERT_EQ(d.F[i], filtered[5 * i]);
+  }
+  // 1024 / 50 Hz: Nyquist 10.24 Hz, below the 20 Hz low-pass -> error.
+  pp.decimate = 50;
+  std::vector<Record> aliased = {orig};
+  try {
+    apply_preprocess(pp, aliased, false);
+    FAIL() << "decimation above the low-pass was accepted";
+  } catch (const InputError &e) {
+    EXPECT_NE(std::string(e.what()).find("Nyquist"), std::string::npos) << e.what();
+    EXPECT_EQ(aliased[0].t.size(), orig.t.size()) << "the record changed on error";
+  }
+  pp.lowpass_hz = 0.0;  // no low-pass at all: also refused
+  pp.decimate = 2;
+  EXPECT_THROW(apply_preprocess(pp, aliased, false), InputError);
+}
+
 TEST(Reversals, FoundThroughNoiseBelowTheBand) {
   std::vector<double> x;
   for (int i = 0; i < 4000; ++i) {  // triangle, period 1000 samples

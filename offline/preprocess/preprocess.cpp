@@ -9,7 +9,7 @@ namespace rtb {
 
 bool Preprocess::active() const {
   return time_scale != 1.0 || disp_scale != 1.0 || force_scale != 1.0 || lowpass_hz > 0.0 ||
-         !masks.empty() || mask_after_reversal > 0.0 || !weights.empty();
+         decimate > 1 || !masks.empty() || mask_after_reversal > 0.0 || !weights.empty();
 }
 
 TimeWindow parse_time_window(const std::string &s, const std::string &option) {
@@ -115,6 +115,31 @@ void lowpass_record(Record &r, double fc) {
   r.F = lowpass_zero_phase(r.F, dt, fc);
 }
 
+// Every k-th sample from the first. The force must already be band-limited
+// below the new Nyquist frequency, or decimation would alias.
+void decimate_record(Record &r, int k, double lowpass_hz) {
+  const double dt_new = k * (r.t.back() - r.t.front()) / (double)(r.t.size() - 1);
+  if (!(lowpass_hz > 0.0 && lowpass_hz < 0.5 / dt_new))
+    throw InputError(r.path + ": --decimate " + std::to_string(k) + " gives " +
+                     std::to_string(1.0 / dt_new) + " Hz; it needs --lowpass below its Nyquist "
+                     "frequency " + std::to_string(0.5 / dt_new) + " Hz (no aliasing)");
+  Record d = r;
+  d.t.clear();
+  d.x.clear();
+  d.F.clear();
+  d.masked.clear();
+  for (size_t i = 0; i < r.t.size(); i += (size_t)k) {
+    d.t.push_back(r.t[i]);
+    d.x.push_back(r.x[i]);
+    d.F.push_back(r.F[i]);
+    if (!r.masked.empty()) d.masked.push_back(r.masked[i]);
+  }
+  if ((int)d.t.size() < kMinSamples)
+    throw InputError(r.path + ": --decimate " + std::to_string(k) + " leaves fewer than " +
+                     std::to_string(kMinSamples) + " samples");
+  r = std::move(d);
+}
+
 void mask_window(Record &r, double t0, double t1) {
   const double ts = r.t.front();
   for (size_t i = 0; i < r.t.size(); ++i)
@@ -133,6 +158,7 @@ void apply_preprocess(const Preprocess &pp, std::vector<Record> &recs, bool use_
     for (double &v : r.x) v *= pp.disp_scale;
     for (double &v : r.F) v *= pp.force_scale;
     if (pp.lowpass_hz > 0.0) lowpass_record(r, pp.lowpass_hz);
+    if (pp.decimate > 1) decimate_record(r, pp.decimate, pp.lowpass_hz);
     if (!pp.masks.empty() || pp.mask_after_reversal > 0.0) {
       r.masked.assign(r.t.size(), 0);
       for (const TimeWindow &w : pp.masks) mask_window(r, w.t0, w.t1);
@@ -157,6 +183,7 @@ nlohmann::ordered_json preprocess_json(const Preprocess &pp) {
   j["force_scale"] = pp.force_scale;
   j["lowpass_hz"] = pp.lowpass_hz;
   j["lowpass"] = pp.lowpass_hz > 0.0 ? "2nd-order Butterworth, forward-backward (zero phase)" : "off";
+  j["decimate"] = pp.decimate;
   nlohmann::ordered_json m = nlohmann::ordered_json::array();
   for (const TimeWindow &w : pp.masks) m.push_back({w.t0, w.t1});
   j["masks_s"] = m;

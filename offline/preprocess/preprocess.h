@@ -1,6 +1,7 @@
 // preprocess.h -- what real rig records need before a fit, as explicit,
-// recorded options: unit scaling, a zero-phase low-pass of the force, time
-// windows excluded from the misfit (machine transients), per-file weights.
+// recorded options: unit scaling, a zero-phase low-pass of the force,
+// decimation to the rate the element will run at, time windows excluded from
+// the misfit (machine transients), per-file weights.
 //
 // Nothing here changes the model; every option is written into the output
 // JSON by preprocess_json() so that a fit can be reproduced from its report.
@@ -26,6 +27,10 @@ struct Preprocess {
   // backward (4th-order magnitude, no phase lag, so it cannot pose as a delay).
   // 0: off. Needs a (nearly) uniform time grid.
   double lowpass_hz = 0.0;
+  // Keep every k-th sample after the low-pass (1: all). The model then steps
+  // at k dt: identify at the rate the controller runs the element. Needs the
+  // low-pass below the new Nyquist frequency (no aliasing).
+  int decimate = 1;
   // Windows excluded from the misfit in every record.
   std::vector<TimeWindow> masks;
   // s excluded after every reversal of the displacement (and every stop
