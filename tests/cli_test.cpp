@@ -279,6 +279,18 @@ TEST_F(CliTest, BadInputExits2WithoutOutput) {
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("'force'"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(vj));
+  // --decimate: an integer >= 1, and only below the low-pass's Nyquist.
+  const std::string big = make_input("big.csv", 400, true);
+  r = rtb("validate --params " + shell_quote(params) + " --data " + shell_quote(big) +
+          " --decimate 2.5 --out " + shell_quote(vj));
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("--decimate"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(vj));
+  r = rtb("validate --params " + shell_quote(params) + " --data " + shell_quote(big) +
+          " --decimate 4 --out " + shell_quote(vj));
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("Nyquist"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(vj));
   // No leftovers (temporary files) in the directory.
   for (const auto &e : fs::directory_iterator(dir_))
     EXPECT_EQ(e.path().filename().string().find(".tmp."), std::string::npos) << e.path();

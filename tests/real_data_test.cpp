@@ -76,9 +76,10 @@ TEST(RealData, FrictionDamperDiagnosisFindsTheClearance) {
   spec.diag.only = {"backlash", "friction_asymmetry", "offset", "viscous", "maxwell"};
   spec.diag.max_causes = 2;
   spec.second_stage.clear();
-  // At the rate a controller would run it: 1024 Hz / 5 = 205 Hz, well above
-  // twice the 20 Hz low-pass (5x fewer steps; the report keeps 1024 Hz).
-  spec.pre.decimate = 5;
+  // The study decimates 1024 Hz -> 205 Hz after its 20 Hz low-pass: at
+  // 1024 Hz the same diagnosis gives the same causes and errors to 0.1%
+  // (measured: held-out 60.98% against 61.02%) in 190 s instead of 23 s.
+  ASSERT_EQ(spec.pre.decimate, 5);
   const StudyResult r = run_study(spec, data_dir(), true);
   // Issue #10's target: backlash among the causes (its order against
   // friction asymmetry depends on which the baseline basin favours).
