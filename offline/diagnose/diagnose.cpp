@@ -77,6 +77,7 @@ double amplitude_z(const Candidate &c, const ExtFitResult &f) {
   return 0.0;
 }
 
+
 // Stage 4: joint fits of the best-screened candidates (in parallel).
 void joint_fits(std::vector<CandidateOutcome> &out, const Current &cur, const Context &cx,
                 int how_many) {
@@ -264,6 +265,30 @@ std::string verdict_text(const DiagnoseResult &R, const DiagnoseOptions &opt) {
 
 }  // namespace
 
+// Fitted parameters a candidate adds (its extension's, or the artefact's).
+static size_t parameter_count(const Candidate &c) {
+  return c.extra.size() + (c.delay ? 1 : 0) + (c.offset ? 1 : 0);
+}
+
+// Stage 5's choice among the eligible: the lowest trimmed held-out error,
+// or, within `parsimony` of it, the candidate with the fewest parameters
+// (then the lower error). nullptr when none is eligible.
+const CandidateOutcome *select_cause(const std::vector<CandidateOutcome> &round,
+                                     double parsimony) {
+  const CandidateOutcome *best = nullptr;
+  for (const CandidateOutcome &co : round)
+    if (co.eligible && (!best || co.error_holdout_trimmed < best->error_holdout_trimmed)) best = &co;
+  if (!best) return nullptr;
+  const double within = (1.0 + parsimony) * best->error_holdout_trimmed;
+  const CandidateOutcome *pick = best;
+  for (const CandidateOutcome &co : round) {
+    if (!co.eligible || co.error_holdout_trimmed > within) continue;
+    const size_t n = parameter_count(co.cand), m = parameter_count(pick->cand);
+    if (n < m || (n == m && co.error_holdout_trimmed < pick->error_holdout_trimmed)) pick = &co;
+  }
+  return pick;
+}
+
 std::vector<RecordFigures> record_figures(const ExtModel &m, const std::vector<Record> &fit,
                                           const std::vector<Record> &holdout,
                                           const MisfitOptions &opt) {
@@ -361,9 +386,7 @@ DiagnoseResult diagnose(const std::vector<Record> &fit_in, const std::vector<Rec
            c.error_fit > opt.floor_ratio * R.floor.error_fit;
   };
   for (int round = 0;; ++round) {
-    const CandidateOutcome *best = nullptr;
-    for (const CandidateOutcome &co : round_out)
-      if (co.eligible && (!best || co.error_holdout_trimmed < best->error_holdout_trimmed)) best = &co;
+    const CandidateOutcome *best = select_cause(round_out, opt.parsimony);
     R.candidates.insert(R.candidates.end(), round_out.begin(), round_out.end());
     if (!best) break;
     R.causes.push_back(make_cause(*best, cur));

@@ -19,8 +19,10 @@
 //                 and the data do not contradict it (plausibility.h: an offset
 //                 must agree with at-rest segments, a delay with the
 //                 cross-correlation, slack with zero-force segments). The
-//                 lowest held-out error among the eligible is accepted as the
-//                 next cause; stages 3-5 repeat at the extended model while a
+//                 lowest held-out error among the eligible wins, unless a
+//                 candidate with fewer parameters comes within `parsimony`
+//                 of it (a two-parameter relaxation spectrum imitates a
+//                 viscous dashpot: the simpler word is then the cause); stages 3-5 repeat at the extended model while a
 //                 further cause still pays on held-out data and the residual
 //                 is above the noise floor (several causes).
 // 6. report       causes, or `none` when the baseline is at the noise floor,
@@ -54,6 +56,9 @@ struct DiagnoseOptions {
   double min_dbic = 10.0;
   double min_z = 3.0;
   double trim = 0.005;      // fraction of largest held-out residuals ignored when selecting
+  // An eligible candidate with fewer parameters whose held-out error is
+  // within this fraction of the best one's is preferred (parsimony).
+  double parsimony = 0.10;
   // The residual is "at the noise floor" below this multiple of the floor's
   // eq. (27) error (noise_floor.h); above it, no candidate means `unexplained`.
   double floor_ratio = 1.3;
@@ -90,6 +95,13 @@ struct CandidateOutcome {
   bool eligible = false;
   std::string why;            // reason when not eligible
 };
+
+// Stage 5's choice among a round's outcomes: the eligible candidate with the
+// lowest trimmed held-out error or, within `parsimony` (a fraction) of it,
+// the one with the fewest fitted parameters (ties: the lower error);
+// nullptr when none is eligible.
+const CandidateOutcome *select_cause(const std::vector<CandidateOutcome> &round,
+                                     double parsimony);
 
 // One accepted cause, in the order found.
 struct Cause {

@@ -9,7 +9,8 @@
 // counted against the candidate). Effects with a shape parameter (Maxwell
 // tau, softening width, spectrum exponent) scan it on a grid; a clearance
 // (not differentiable at g = 0) gets a short joint fit from two gaps; slack
-// (a switch) gets a short fit with the switch on.
+// (a switch) gets a short fit with the switch on, and Mullins softening a
+// short fit from a finite size (its linearization at 0 misleads, screen.cpp).
 #ifndef RTB_OFFLINE_SCREEN_H
 #define RTB_OFFLINE_SCREEN_H
 
