@@ -61,7 +61,9 @@ Current make_current(const ExtModel &m, const ExtFitSpec &spec, const std::vecto
   return c;
 }
 
-// Size of the effect: its first parameter, or the delay / offset.
+// Size of the effect (its first parameter, or the delay / offset) over its
+// standard deviation: the Wald z. NaN when the fit has no finite standard
+// deviation for it (a size at a clamp, a singular covariance).
 double amplitude_z(const Candidate &c, const ExtFitResult &f) {
   std::string amp;
   if (!c.extra.empty()) amp = param_name(c.extra[0]);
@@ -70,8 +72,8 @@ double amplitude_z(const Candidate &c, const ExtFitResult &f) {
   else return INFINITY;  // a switch (slack): judged by BIC and gain alone
   for (size_t i = 0; i < f.names.size(); ++i)
     if (f.names[i] == amp) {
-      if (!f.stddev_valid) return 0.0;
-      const double sd = f.stddev[(Eigen::Index)i];
+      const double sd = f.stddev_valid ? f.stddev[(Eigen::Index)i] : NAN;
+      if (!std::isfinite(sd)) return NAN;  // no Wald figure: see evaluate()
       return sd > 0.0 ? std::fabs(f.value[(Eigen::Index)i]) / sd : INFINITY;
     }
   return 0.0;
@@ -127,6 +129,10 @@ void judge(CandidateOutcome &co, const Current &cur, const Context &cx, double m
   co.error_holdout_trimmed = extended_error(co.fit.model, cx.sel, cx.sel_opt, nullptr, nullptr, opt.trim);
   co.gain = 1.0 - co.error_holdout_trimmed / cur.error_holdout_trimmed;
   co.amplitude_z = amplitude_z(co.cand, co.fit);
+  // At a clamp the Wald z does not exist; the likelihood ratio of the fit
+  // against the current model (one added parameter) still measures it.
+  if (std::isnan(co.amplitude_z))
+    co.amplitude_z = std::sqrt(std::max(0.0, ms * std::log(cur.J_trim / Jc_trim)));
   // A Maxwell branch whose relaxation time is below the sample interval acts
   // as a linear dashpot c = k tau: the data cannot tell it from `viscous`.
   const bool unresolved_tau =
