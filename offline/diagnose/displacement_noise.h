@@ -6,9 +6,11 @@
 // acceleration noise, as large as the signal of a 20 Hz, 1 mm sine, and it
 // would both hide an inertia term and bias its fit towards zero.
 // When the displacement noise matters, the model input is the displacement
-// passed through a zero-phase 4th-order Butterworth low-pass at a fifth of
-// the sampling rate: 99.999% of a component at fs/25 (40 Hz at 1 kHz) passes,
-// and the acceleration noise drops ~10x. The force is never filtered.
+// passed through a zero-phase 4th-order Butterworth low-pass at the records'
+// bandwidth: the cut-off is halved from fs/5 while what it removes is still
+// white noise (down to fs/200), and the widest band over the records is
+// kept. A component at half the cut-off passes to 99.6%. The force is never
+// filtered.
 #ifndef RTB_OFFLINE_DISPLACEMENT_NOISE_H
 #define RTB_OFFLINE_DISPLACEMENT_NOISE_H
 
