@@ -362,9 +362,10 @@ TEST_P(RealtimeScenario, IterationCapRespected) {
   EXPECT_EQ(res.nonfinite, 0) << sc.name;
   if (p.model == RTB_MODEL_RT) {
     // Measured: every call but the one at rest with a clearance (0 iterations)
-    // and a few clearance searches (the warm-started responses converge).
+    // and a few clearance searches (the warm-started responses converge: 16 of
+    // 2000 calls on RT_BE_ext with the Chebyshev step, 6 without).
     EXPECT_EQ(res.converged_in_one_response, 0) << sc.name;
-    EXPECT_GE(res.not_converged, res.calls - 10) << sc.name;
+    EXPECT_GE(res.not_converged, res.calls - 25) << sc.name;
     EXPECT_EQ(res.max_iterations, stages(p)) << sc.name;
   } else {
     EXPECT_LE(res.max_iterations, expected_max_last(p)) << sc.name;

@@ -85,7 +85,7 @@ static void stage_tangent(const rtb_params *p, const rtb_stage *st, const rtb_re
 }
 
 /* d y1_new / d xb_new of the chain advance (RT). */
-static rtb_real chain_dy1_dxb(const rtb_params *p, const rtb_stage st[2], rtb_real dt) {
+static rtb_real chain_dy1_dxb(const rtb_params *p, const rtb_stage st[2]) {
   rtb_real dy[RTB_MAX_CELLS];
   if (rtb_integrator_stages(p) == 1) {
     stage_tangent(p, &st[0], NULL, p->Kpa, dy);
@@ -96,7 +96,6 @@ static rtb_real chain_dy1_dxb(const rtb_params *p, const rtb_stage st[2], rtb_re
   stage_tangent(p, &st[0], NULL, p->Kpa * g, dy);
   for (int k = 0; k < p->cells; ++k) dc[k] = (1.0 - g) / g * dy[k]; /* (1-g) dt dv1 */
   stage_tangent(p, &st[1], dc, p->Kpa, dy);
-  (void)dt;
   return dy[0];
 }
 
@@ -144,7 +143,7 @@ void respond(const rtb_state *s, const rtb_params *p, const rtb_settings *set,
     r->iterations = r->st[0].iterations + (ns == 2 ? r->st[1].iterations : 0);
     r->backtracks = r->st[0].backtracks + (ns == 2 ? r->st[1].backtracks : 0);
     r->residual = fmax(r->st[0].residual, ns == 2 ? r->st[1].residual : 0.0);
-    if (tangent && r->status >= 0) dy1 = chain_dy1_dxb(p, r->st, dt);
+    if (tangent && r->status >= 0) dy1 = chain_dy1_dxb(p, r->st);
   } else {
     r->status = rtb_sts_solve(p, s->y, xb, r->y, &r->iterations, tangent ? &dy1 : NULL);
     *budget -= n; /* no law: one unit per cell and solve bounds the clearance loop */
