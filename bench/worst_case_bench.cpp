@@ -33,6 +33,7 @@
 #include <vector>
 
 #include "rt_bushing/rt_bushing.h"
+#include "tests/random_configs.h"
 
 namespace {
 
@@ -155,44 +156,6 @@ void BM_Extension(benchmark::State &state) {
   state.SetLabel(extension_name(e));
 }
 
-double log_uniform(std::mt19937 &g, double lo, double hi) {
-  std::uniform_real_distribution<double> u(std::log(lo), std::log(hi));
-  return std::exp(u(g));
-}
-
-/* tests/robustness_test.cpp random_params, plus smoothing and the softening
- * spring. */
-rtb_params random_params(std::mt19937 &g) {
-  std::uniform_int_distribution<int> cells(1, RTB_MAX_CELLS);
-  std::uniform_int_distribution<int> coin(0, 1);
-  std::uniform_real_distribution<double> u01(0.0, 1.0);
-  rtb_params p;
-  rtb_params_default(&p, u01(g) < 0.75 ? RTB_MODEL_RT : RTB_MODEL_STS);
-  p.cells = cells(g);
-  p.integrator = coin(g) ? RTB_INTEGRATOR_SDIRK2 : RTB_INTEGRATOR_BE;
-  p.K0 = u01(g) < 0.1 ? 0.0 : log_uniform(g, 1.0, 1e4);
-  p.Kpa = log_uniform(g, 1.0, 1e4);
-  p.Kr = log_uniform(g, 1.0, 1e5);
-  p.C0 = log_uniform(g, 0.1, 1e3);
-  p.alpha = log_uniform(g, RTB_ALPHA_MIN, 0.99);
-  p.Ff = log_uniform(g, 0.1, 1e3);
-  if (u01(g) < 0.5) {
-    if (coin(g)) p.k3 = log_uniform(g, 1e-3, 1e2);
-    if (coin(g)) p.k_asym = (u01(g) * 2.0 - 1.0) * p.K0;
-    if (coin(g)) {
-      p.maxwell_k = log_uniform(g, 1.0, 1e4);
-      p.maxwell_tau = log_uniform(g, 1e-4, 10.0);
-    }
-    if (coin(g)) p.viscous_c = log_uniform(g, 1e-3, 1e2);
-    if (coin(g)) p.mass = log_uniform(g, 1e-6, 1e-2);
-    if (coin(g)) p.backlash = log_uniform(g, 1e-6, 1.0);
-    if (coin(g)) p.mullins = u01(g) * 0.9;
-    if (coin(g)) p.smoothing = log_uniform(g, 1e-2, 1e4);
-    if (coin(g)) { p.sat_force = log_uniform(g, 1.0, 1e3); p.sat_disp = log_uniform(g, 1e-3, 1.0); }
-  }
-  return p;
-}
-
 void BM_RandomConfigs(benchmark::State &state) {
   const int sets = static_cast<int>(state.range(0)), steps = 300;
   const long repeat = repeat_count();
@@ -204,18 +167,18 @@ void BM_RandomConfigs(benchmark::State &state) {
     top.clear();
     total = nc = errors = 0;
     for (int set = 0; set < sets; ++set) {
-      const rtb_params p = random_params(g);
-      const double amp = log_uniform(g, 1e-9, 1e3);
+      const rtb_params p = rtb_test::random_params(g, true);
+      const double amp = rtb_test::log_uniform(g, 1e-9, 1e3);
       rtb_state s;
       if (rtb_state_init(&s, &p, 0.0) != RTB_OK) { ++errors; continue; }
       double x = 0.0;
       for (int i = 0; i < steps; ++i) {
-        const double dt = log_uniform(g, 1e-5, 1e-2);
+        const double dt = rtb_test::log_uniform(g, 1e-5, 1e-2);
         const double kind = u01(g);
         if (kind < 0.4) x = amp * std::sin(kTwoPi * 5.0 * s.time);
         else if (kind < 0.7) x += amp * (2.0 * u01(g) - 1.0) * 0.1;
         else if (kind < 0.9) x = amp * (2.0 * u01(g) - 1.0);
-        else x = (u01(g) < 0.5 ? -1.0 : 1.0) * log_uniform(g, 1e-9, 1e3);
+        else x = (u01(g) < 0.5 ? -1.0 : 1.0) * rtb_test::log_uniform(g, 1e-9, 1e3);
         Candidate c{0.0, p, s, x, dt};
         rtb_status st;
         c.ns = timed_step(&s, p, x, dt, repeat, &st);

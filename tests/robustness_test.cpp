@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "rt_bushing/rt_bushing.h"
+#include "tests/random_configs.h"
 
 namespace {
 
@@ -418,39 +419,8 @@ TEST(RobustErrors, StatusMessages) {
 }
 
 // ---------------------------------------------------------------- finite output
-double log_uniform(std::mt19937 &g, double lo, double hi) {
-  std::uniform_real_distribution<double> u(std::log(lo), std::log(hi));
-  return std::exp(u(g));
-}
-
-rtb_params random_params(std::mt19937 &g) {
-  std::uniform_int_distribution<int> cells(1, RTB_MAX_CELLS);
-  std::uniform_int_distribution<int> coin(0, 1);
-  std::uniform_real_distribution<double> u01(0.0, 1.0);
-  rtb_params p;
-  rtb_params_default(&p, u01(g) < 0.75 ? RTB_MODEL_RT : RTB_MODEL_STS);
-  p.cells = cells(g);
-  p.integrator = coin(g) ? RTB_INTEGRATOR_SDIRK2 : RTB_INTEGRATOR_BE;
-  p.K0 = u01(g) < 0.1 ? 0.0 : log_uniform(g, 1.0, 1e4);
-  p.Kpa = log_uniform(g, 1.0, 1e4);
-  p.Kr = log_uniform(g, 1.0, 1e5);
-  p.C0 = log_uniform(g, 0.1, 1e3);
-  p.alpha = log_uniform(g, RTB_ALPHA_MIN, 0.99);
-  p.Ff = log_uniform(g, 0.1, 1e3);
-  if (u01(g) < 0.5) {  // random subset of the extensions
-    if (coin(g)) p.k3 = log_uniform(g, 1e-3, 1e2);
-    if (coin(g)) p.k_asym = (u01(g) * 2.0 - 1.0) * p.K0;
-    if (coin(g)) {
-      p.maxwell_k = log_uniform(g, 1.0, 1e4);
-      p.maxwell_tau = log_uniform(g, 1e-4, 10.0);
-    }
-    if (coin(g)) p.viscous_c = log_uniform(g, 1e-3, 1e2);
-    if (coin(g)) p.mass = log_uniform(g, 1e-6, 1e-2);
-    if (coin(g)) p.backlash = log_uniform(g, 1e-6, 1.0);
-    if (coin(g)) p.mullins = u01(g) * 0.9;
-  }
-  return p;
-}
+using rtb_test::log_uniform;
+using rtb_test::random_params;
 
 std::string describe(const rtb_params &p) {
   char buf[640];
