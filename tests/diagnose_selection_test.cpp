@@ -50,6 +50,25 @@ TEST(SelectCause, IneligibleNeverChosenAndArtefactsCountTheirParameter) {
   EXPECT_EQ(select_cause(r, 0.10), nullptr);
 }
 
+// The gain test near the noise floor, with the measured refgen figures
+// (held-out eq. (27) errors of the baseline, the candidate and the floor).
+TEST(GainTest, HalfTheExcessOverTheFloorCountsNearTheFloor) {
+  const DiagnoseOptions opt;
+  // relaxation_spectrum_s3: 1.70% -> 1.48%, floor 1.34%: 13% gain, 61% of the excess.
+  EXPECT_NEAR(excess_removed(0.0170, 0.0148, 0.0134), 0.61, 0.01);
+  EXPECT_TRUE(gain_suffices(0.13, 0.0170, 0.0148, 0.0134, opt.min_gain, opt));
+  // Far above the floor the relative rule alone decides: 13% is not enough.
+  EXPECT_FALSE(gain_suffices(0.13, 0.0170, 0.0148, 0.0010, opt.min_gain, opt));
+  // A small relative gain does not pass even if it is most of a tiny excess
+  // (plain data: none_s3 is 1.10x its floor).
+  EXPECT_FALSE(gain_suffices(0.04, 0.0143, 0.0137, 0.0129, opt.min_gain, opt));
+  // At or below the floor there is no excess to remove.
+  EXPECT_EQ(excess_removed(0.0130, 0.0120, 0.0135), 0.0);
+  EXPECT_FALSE(gain_suffices(0.08, 0.0130, 0.0120, 0.0135, opt.min_gain, opt));
+  // The relative rule still passes on its own.
+  EXPECT_TRUE(gain_suffices(0.20, 0.0500, 0.0400, 0.0010, opt.min_gain, opt));
+}
+
 }  // namespace
 }  // namespace rtb
 #endif  // RTB_HAVE_OFFLINE

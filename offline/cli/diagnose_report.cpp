@@ -119,8 +119,9 @@ nlohmann::ordered_json diagnosis_json(const DiagnoseResult &R, const std::vector
   j["gain"] = num(R.gain);
   j["baseline_error_holdout_trimmed"] = num(R.baseline_error_holdout_trimmed);
   j["selection"] = "per round, the lowest trimmed held-out error among candidates with z >= 3, "
-                   "delta BIC >= 10, trimmed gain >= 15% (10% for later causes), not contradicted "
-                   "by the data; rounds continue while the residual is above 1.3x the noise floor";
+                   "delta BIC >= 10, trimmed gain >= 15% (10% for later causes) or, near the noise "
+                   "floor, >= 5% removing half the excess over the floor, not contradicted by the data, "
+                   "fewer parameters preferred within 10%; rounds continue while the residual is above 1.3x the noise floor";
   j["holdout_used"] = R.has_holdout;
   nlohmann::ordered_json cs = nlohmann::ordered_json::array();
   for (const CandidateOutcome &c : R.candidates) {

@@ -42,17 +42,20 @@ DataScales data_scales(const std::vector<Record> &recs) {
   return s;
 }
 
-namespace {
-void set_held(rtb_params &p, const DataScales &) { p.backlash_held = 1; }
-void set_slack(rtb_params &p, const DataScales &) { p.slack = 1; }
-// Branch times from a few sample intervals to the longest record: the whole
-// range the data can resolve, two branches per decade (bushing_force.h).
-void set_spectrum(rtb_params &p, const DataScales &s) {
-  p.spec_tau_min = 3.0 * s.dt;
+void set_spectrum_range(rtb_params &p, const DataScales &s, double tau_min) {
+  p.spec_tau_min = tau_min;
   p.spec_tau_max = std::max(p.spec_tau_min, s.duration);
   const double cap = p.spec_tau_min * std::pow(10.0, (RTB_MAX_BRANCHES - 1) / 2.0);
   p.spec_tau_max = std::min(p.spec_tau_max, cap);
 }
+
+namespace {
+void set_held(rtb_params &p, const DataScales &) { p.backlash_held = 1; }
+void set_slack(rtb_params &p, const DataScales &) { p.slack = 1; }
+// Branch times from a few sample intervals to the longest record: the whole
+// range the data can resolve, two branches per decade (bushing_force.h). The
+// screen moves the fastest branch (screen.cpp).
+void set_spectrum(rtb_params &p, const DataScales &s) { set_spectrum_range(p, s, 3.0 * s.dt); }
 }  // namespace
 
 const std::vector<Candidate> &candidate_vocabulary() {

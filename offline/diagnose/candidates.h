@@ -27,6 +27,10 @@ struct Candidate {
   void (*configure)(rtb_params &p, const DataScales &s) = nullptr;
 };
 
+// The relaxation spectrum's branch range: from tau_min [time] to the longest
+// record, at most RTB_MAX_BRANCHES branches two per decade.
+void set_spectrum_range(rtb_params &p, const DataScales &s, double tau_min);
+
 // cubic_stiffness, asymmetry, maxwell, viscous, backlash (floating and held
 // end), mullins, delay, inertia, offset, softening, slack,
 // relaxation_spectrum, friction_asymmetry ("none" is the absence of all of

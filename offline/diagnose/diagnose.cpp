@@ -46,6 +46,7 @@ struct Context {
   const DiagnoseOptions &opt;
   DataScales sc;
   std::vector<double> sigma;  // noise level per record of `all`
+  double floor_sel = 0.0;     // the noise floor's eq. (27) error on `sel`
 };
 
 Current make_current(const ExtModel &m, const ExtFitSpec &spec, const std::vector<Candidate> &causes,
@@ -147,7 +148,8 @@ void judge(CandidateOutcome &co, const Current &cur, const Context &cx, double m
   else if (at_bound) co.why = "size at the bound of its admissible range: a compensation, not a measurement";
   else if (unresolved_tau) co.why = "relaxation time below 2 sample intervals: a viscous dashpot";
   else if (co.dbic < opt.min_dbic) co.why = "fit gain explained by the extra parameters (delta BIC)";
-  else if (co.gain < min_gain) co.why = cx.holdout.empty() ? "fit gain below min_gain" : "held-out gain below min_gain";
+  else if (!gain_suffices(co.gain, cur.error_holdout, co.error_holdout, cx.floor_sel, min_gain, opt))
+    co.why = cx.holdout.empty() ? "fit gain below min_gain" : "held-out gain below min_gain";
   else {
     co.why = contradiction(co.cand, co.fit.model, cur.model, cx.all, cx.sigma, opt.misfit);
     co.eligible = co.why.empty();
@@ -272,6 +274,17 @@ std::string verdict_text(const DiagnoseResult &R, const DiagnoseOptions &opt) {
 }  // namespace
 
 // Fitted parameters a candidate adds (its extension's, or the artefact's).
+double excess_removed(double current, double candidate, double floor) {
+  const double excess = current - floor;
+  return excess > 0.0 ? (current - candidate) / excess : 0.0;
+}
+
+bool gain_suffices(double gain, double current, double candidate, double floor, double min_gain,
+                   const DiagnoseOptions &opt) {
+  return gain >= min_gain || (gain >= opt.min_gain_near_floor &&
+                              excess_removed(current, candidate, floor) >= opt.min_excess_removed);
+}
+
 static size_t parameter_count(const Candidate &c) {
   return c.extra.size() + (c.delay ? 1 : 0) + (c.offset ? 1 : 0);
 }
@@ -358,6 +371,7 @@ DiagnoseResult diagnose(const std::vector<Record> &fit_in, const std::vector<Rec
     R.floor = estimate_noise_floor(R.baseline, fit, holdout, opt.misfit);
     cx.sigma = R.floor.sigma_fit;
     cx.sigma.insert(cx.sigma.end(), R.floor.sigma_holdout.begin(), R.floor.sigma_holdout.end());
+    cx.floor_sel = R.has_holdout ? R.floor.error_holdout : R.floor.error_fit;
     // 3-5. First round.
     first = one_round(cur, cx, 0, R);
     const CandidateOutcome *better = better_basin(first, cur.error_fit, opt.min_z);
