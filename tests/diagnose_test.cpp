@@ -21,8 +21,9 @@ using namespace rtb;
 namespace {
 
 #if defined(__SANITIZE_ADDRESS__)
-// The sanitizer build checks memory, not statistics: a short subset.
-const std::vector<std::string> kEffects = {"none", "backlash", "offset"};
+// The sanitizer build checks memory, not statistics: one scenario, whose
+// diagnosis takes the longest path (short fits, several rounds).
+const std::vector<std::string> kEffects = {"backlash"};
 constexpr double kDuration = 4.0;
 #else
 const std::vector<std::string> kEffects = {"none",     "cubic_stiffness", "asymmetry", "maxwell",
