@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <utility>
 
 namespace rtb {
 
@@ -54,26 +55,94 @@ void set_held(rtb_params &p, const DataScales &) { p.backlash_held = 1; }
 void set_slack(rtb_params &p, const DataScales &) { p.slack = 1; }
 // Branch times from a few sample intervals to the longest record: the whole
 // range the data can resolve, two branches per decade (bushing_force.h). The
-// screen moves the fastest branch (screen.cpp).
+// screen moves the fastest branch (spectrum_passes).
 void set_spectrum(rtb_params &p, const DataScales &s) { set_spectrum_range(p, s, 3.0 * s.dt); }
+
+// Shapes scanned by the screen, and the starts of its short fits.
+void maxwell_tau_of_duration(rtb_params &p, const DataScales &s, double g) {
+  p.maxwell_tau = std::max(g * s.duration, 5.0 * s.dt);
+}
+void sat_disp_of_stroke(rtb_params &p, const DataScales &s, double g) { p.sat_disp = g * s.Xmax; }
+void spectrum_exponent(rtb_params &p, const DataScales &, double g) { p.spec_exp = g; }
+void spectrum_fastest_branch(rtb_params &p, const DataScales &s, double g) {
+  set_spectrum_range(p, s, g * s.dt);
+}
+void backlash_of_stroke(rtb_params &p, const DataScales &s, double g) { p.backlash = g * s.Xmax; }
+void mullins_fraction(rtb_params &p, const DataScales &, double g) { p.mullins = g; }
+
+// The spectrum's shape: the exponent (from 3 sample intervals), then the
+// fastest branch at that exponent (7 evaluations, not 16: the screen runs
+// every round). Branches faster than the specimen's own fastest relaxation
+// act, beyond the fit records' bandwidth, as a stiffness the held-out
+// records contradict (refgen relaxation_spectrum_s3: from 3 sample
+// intervals the joint fit gets 1.07% on the fit records and 2.14% held out,
+// from 10 (the truth) 1.03% and 1.48%). The screen sees all records, the
+// held-out kind too.
+std::vector<ShapePass> spectrum_passes() {
+  return {{spectrum_exponent, {-0.3, 0.0, 0.3, 0.6}, 0.3},
+          {spectrum_fastest_branch, {10.0, 30.0, 100.0}, 3.0}};
+}
+
+using Configure = void (*)(rtb_params &p, const DataScales &s);
+
+// A physical word: the extension parameters it frees.
+Candidate word(const char *name, std::vector<ParamId> extra, Configure configure = nullptr,
+               const char *variant = "") {
+  Candidate c;
+  c.name = name;
+  c.extra = std::move(extra);
+  c.configure = configure;
+  c.variant = variant;
+  return c;
+}
+// A measurement-chain artefact: a delay or an offset of the force channel.
+Candidate artefact(const char *name, bool delay, bool offset) {
+  Candidate c;
+  c.name = name;
+  c.physical = false;
+  c.delay = delay;
+  c.offset = offset;
+  return c;
+}
+Candidate shape_scanned(Candidate c, std::vector<ShapePass> passes) {
+  c.screen = ScreenMethod::shape_scan;
+  c.passes = std::move(passes);
+  return c;
+}
+Candidate short_fitted(Candidate c, ShapeSetter start_at, std::vector<double> starts) {
+  c.screen = ScreenMethod::short_fit;
+  c.start_at = start_at;
+  c.starts = std::move(starts);
+  return c;
+}
 }  // namespace
 
+// Starting gaps of the clearance screens are fractions of the stroke: a
+// clearance much wider than the first is a different basin (a friction device
+// with a 10%-of-stroke play, e.g.); each start is its own screen job.
+// Mullins is linear in mu, but a baseline fitted without it sits in another
+// basin (on refgen's Mullins cases Kr 1676 against 4766, alpha 0.10 against
+// 0.22): the score test at mu = 0 sees 1% of the misfit go, a joint fit from
+// mu = 0.3 takes it to the floor (3.5% -> 1.26%).
 const std::vector<Candidate> &candidate_vocabulary() {
   static const std::vector<Candidate> v = {
-      {"cubic_stiffness", true, {P_k3}, false, false, "", nullptr},
-      {"asymmetry", true, {P_k_asym}, false, false, "", nullptr},
-      {"maxwell", true, {P_maxwell_k, P_maxwell_tau}, false, false, "", nullptr},
-      {"viscous", true, {P_viscous_c}, false, false, "", nullptr},
-      {"backlash", true, {P_backlash}, false, false, "", nullptr},
-      {"backlash", true, {P_backlash}, false, false, "held", set_held},
-      {"mullins", true, {P_mullins}, false, false, "", nullptr},
-      {"delay", false, {}, true, false, "", nullptr},
-      {"inertia", true, {P_mass}, false, false, "", nullptr},
-      {"offset", false, {}, false, true, "", nullptr},
-      {"softening", true, {P_sat_force, P_sat_disp}, false, false, "", nullptr},
-      {"slack", true, {}, false, false, "", set_slack},
-      {"relaxation_spectrum", true, {P_spec_k, P_spec_exp}, false, false, "", set_spectrum},
-      {"friction_asymmetry", true, {P_fric_asym}, false, false, "", nullptr},
+      word("cubic_stiffness", {P_k3}),
+      word("asymmetry", {P_k_asym}),
+      shape_scanned(word("maxwell", {P_maxwell_k, P_maxwell_tau}),
+                    {{maxwell_tau_of_duration, {0.003, 0.01, 0.03, 0.1, 0.3, 1.0}, 0.1}}),
+      word("viscous", {P_viscous_c}),
+      short_fitted(word("backlash", {P_backlash}), backlash_of_stroke, {0.02, 0.1}),
+      short_fitted(word("backlash", {P_backlash}, set_held, "held"), backlash_of_stroke, {0.03}),
+      short_fitted(word("mullins", {P_mullins}), mullins_fraction, {0.3}),
+      artefact("delay", true, false),
+      word("inertia", {P_mass}),
+      artefact("offset", false, true),
+      shape_scanned(word("softening", {P_sat_force, P_sat_disp}),
+                    {{sat_disp_of_stroke, {0.03, 0.1, 0.3, 1.0}, 0.1}}),
+      short_fitted(word("slack", {}, set_slack), nullptr, {}),
+      shape_scanned(word("relaxation_spectrum", {P_spec_k, P_spec_exp}, set_spectrum),
+                    spectrum_passes()),
+      word("friction_asymmetry", {P_fric_asym}),
   };
   return v;
 }

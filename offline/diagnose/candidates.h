@@ -17,6 +17,27 @@ struct DataScales {
 };
 DataScales data_scales(const std::vector<Record> &recs);
 
+// How stage 3 (screen.cpp) looks at a candidate before the joint fits.
+enum class ScreenMethod {
+  score,       // linear in its amplitude extra[0]: the score test
+  shape_scan,  // amplitude linear, a shape scanned on grids (ShapePass)
+  short_fit,   // a short joint fit: not differentiable at zero size (a
+               // clearance), a switch (slack), or a linearization at zero
+               // that misleads (Mullins)
+};
+
+// A model setting with a grid value g, on the data's scales.
+using ShapeSetter = void (*)(rtb_params &p, const DataScales &s, double g);
+
+// One pass of a shape scan: the amplitude is linear at every grid value.
+// A pass keeps the shape the passes before it chose, or `fallback` for a
+// pass that found no admissible amplitude.
+struct ShapePass {
+  ShapeSetter set;
+  std::vector<double> grid;
+  double fallback;
+};
+
 struct Candidate {
   std::string name;           // vocabulary word
   bool physical = true;       // false: measurement-chain artefact (not in rt_bushing)
@@ -25,6 +46,12 @@ struct Candidate {
   std::string variant;        // a second definition of the same word ("held")
   // Model settings the effect needs (flags, branch time range), or nullptr.
   void (*configure)(rtb_params &p, const DataScales &s) = nullptr;
+  ScreenMethod screen = ScreenMethod::score;
+  std::vector<ShapePass> passes;  // shape_scan
+  // short_fit: one screen job per start (start_at puts it into the model),
+  // or a single job from the configured model when there is none.
+  ShapeSetter start_at = nullptr;
+  std::vector<double> starts;
 };
 
 // The relaxation spectrum's branch range: from tau_min [time] to the longest

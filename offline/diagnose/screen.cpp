@@ -79,32 +79,25 @@ void apply_rt_step(const Eigen::VectorXd &d, rtb_params &p) {
   p.alpha = std::max(std::min(p.alpha, 0.95), 1.01 * RTB_ALPHA_MIN);
 }
 
-// Starting gaps of the clearance screens, as fractions of the stroke: a
-// clearance much wider than the first is a different basin (a friction
-// device with a 10%-of-stroke play, e.g.). Each start is its own job.
-constexpr double kFloatStarts[] = {0.02, 0.1};
-constexpr double kHeldStarts[] = {0.03};
-constexpr double kMullinsStart = 0.3;  // fraction of the K0 path lost below the prior max
-
 struct Job {
   size_t cand;
   int variant;
 };
 
-// Scan a shape parameter on a grid with the amplitude linear; keep the best
-// positive amplitude.
-template <class Set>
-CandidateScreen scan_shape(const ExtModel &m, const Columns &base, const std::vector<Record> &recs,
-                           const MisfitOptions &opt, ParamId amplitude,
-                           const std::vector<double> &grid, Set set_shape) {
+// One pass of a shape scan at model m: the amplitude (the candidate's first
+// parameter) linear at each grid value; keeps the best admissible amplitude
+// and, in *chosen, its grid value (untouched when there is none).
+CandidateScreen scan_pass(const ExtModel &m, const Columns &base, const std::vector<Record> &recs,
+                          const MisfitOptions &opt, const DataScales &sc, ParamId amplitude,
+                          const ShapePass &pass, double *chosen) {
   CandidateScreen s;
   s.start = m;
   ExtFitSpec one;
   one.free = {amplitude};
   bool any = false;
-  for (double g : grid) {
+  for (double g : pass.grid) {
     ExtModel t = m;
-    set_shape(t.p, g);
+    pass.set(t.p, sc, g);
     CandidateScreen c;
     Eigen::VectorXd step;
     joint_linear(base, screen_columns(t, recs, opt, one).g, c, &step);
@@ -112,11 +105,29 @@ CandidateScreen scan_shape(const ExtModel &m, const Columns &base, const std::ve
       s = c;
       s.start = t;
       apply_rt_step(step, s.start.p);
+      *chosen = g;
       any = true;
     }
   }
   s.plausible = any;
   return s;
+}
+
+// The passes in order, each at the shape the earlier ones chose; the
+// admissible pass with the largest misfit reduction wins (the first on ties).
+CandidateScreen scan_shape(const Candidate &c, const ExtModel &m0, const Columns &base,
+                           const std::vector<Record> &recs, const MisfitOptions &opt,
+                           const DataScales &sc) {
+  CandidateScreen best;
+  std::vector<double> chosen;
+  for (size_t k = 0; k < c.passes.size(); ++k) {
+    ExtModel m = m0;
+    for (size_t i = 0; i < k; ++i) c.passes[i].set(m.p, sc, chosen[i]);
+    chosen.push_back(c.passes[k].fallback);
+    const CandidateScreen s = scan_pass(m, base, recs, opt, sc, c.extra[0], c.passes[k], &chosen[k]);
+    if (k == 0 || (s.plausible && (!best.plausible || s.dJ > best.dJ))) best = s;
+  }
+  return best;
 }
 
 // A short joint fit (clearance, slack): not differentiable in the switch.
@@ -152,44 +163,9 @@ CandidateScreen screen_one(const Candidate &c, int variant, const ExtModel &m,
                            const DataScales &sc) {
   ExtModel m0 = m;
   if (c.configure) c.configure(m0.p, sc);
-  if (c.name == "maxwell")
-    return scan_shape(m0, base, recs, opt, P_maxwell_k, {0.003, 0.01, 0.03, 0.1, 0.3, 1.0},
-                      [&](rtb_params &p, double f) {
-                        p.maxwell_tau = std::max(f * sc.duration, 5.0 * sc.dt);
-                      });
-  if (c.name == "softening")
-    return scan_shape(m0, base, recs, opt, P_sat_force, {0.03, 0.1, 0.3, 1.0},
-                      [&](rtb_params &p, double f) { p.sat_disp = f * sc.Xmax; });
-  if (c.name == "relaxation_spectrum") {
-    // Shape: the exponent (from 3 sample intervals), then the fastest branch
-    // at that exponent (7 evaluations, not 16: the screen runs every round).
-    // Branches faster than the specimen's own fastest relaxation act, beyond
-    // the fit records' bandwidth, as a stiffness the held-out records
-    // contradict (refgen relaxation_spectrum_s3: from 3 sample intervals the
-    // joint fit gets 1.07% on the fit records and 2.14% held out, from 10
-    // (the truth) 1.03% and 1.48%). The screen sees all records, the
-    // held-out kind too.
-    const CandidateScreen e = scan_shape(m0, base, recs, opt, P_spec_k, {-0.3, 0.0, 0.3, 0.6},
-                                         [&](rtb_params &p, double b) { p.spec_exp = b; });
-    const double beta = e.plausible ? e.start.p.spec_exp : 0.3;
-    const CandidateScreen t =
-        scan_shape(m0, base, recs, opt, P_spec_k, {10.0, 30.0, 100.0}, [&](rtb_params &p, double k) {
-          p.spec_exp = beta;
-          set_spectrum_range(p, sc, k * sc.dt);
-        });
-    return t.plausible && (!e.plausible || t.dJ > e.dJ) ? t : e;
-  }
-  if (c.name == "backlash") {
-    m0.p.backlash = (c.variant == "held" ? kHeldStarts : kFloatStarts)[variant] * sc.Xmax;
-    return short_fit(c, m0, spec, base, recs, opt, sc);
-  }
-  if (c.name == "slack") return short_fit(c, m0, spec, base, recs, opt, sc);
-  if (c.name == "mullins") {
-    // Linear in mu, but a baseline fitted without it sits in another basin
-    // (on refgen's Mullins cases Kr 1676 against 4766, alpha 0.10 against
-    // 0.22): the score test at mu = 0 sees 1% of the misfit go, a joint fit
-    // from mu = 0.3 takes it to the floor (3.5% -> 1.26%). A short fit then.
-    m0.p.mullins = kMullinsStart;
+  if (c.screen == ScreenMethod::shape_scan) return scan_shape(c, m0, base, recs, opt, sc);
+  if (c.screen == ScreenMethod::short_fit) {
+    if (c.start_at) c.start_at(m0.p, sc, c.starts[(size_t)variant]);
     return short_fit(c, m0, spec, base, recs, opt, sc);
   }
 
@@ -234,10 +210,8 @@ std::vector<CandidateScreen> screen_candidates(const std::vector<Candidate> &can
   std::vector<Job> jobs;
   for (size_t i = 0; i < cands.size(); ++i) {
     const Candidate &c = cands[i];
-    int variants = 1;
-    if (c.name == "backlash")
-      variants = c.variant == "held" ? (int)std::size(kHeldStarts) : (int)std::size(kFloatStarts);
-    const bool slow = c.name == "backlash" || c.name == "slack" || c.name == "mullins";
+    const bool slow = c.screen == ScreenMethod::short_fit;
+    const int variants = c.start_at ? (int)c.starts.size() : 1;
     for (int v = 0; v < variants; ++v) {
       if (slow) jobs.insert(jobs.begin(), {i, v});
       else jobs.push_back({i, v});

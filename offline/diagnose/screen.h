@@ -10,7 +10,9 @@
 // tau, softening width, spectrum exponent) scan it on a grid; a clearance
 // (not differentiable at g = 0) gets a short joint fit from two gaps; slack
 // (a switch) gets a short fit with the switch on, and Mullins softening a
-// short fit from a finite size (its linearization at 0 misleads, screen.cpp).
+// short fit from a finite size (its linearization at 0 misleads). Each word
+// of the vocabulary carries its method, grids and starts (candidates.cpp),
+// so a new word is one row there, not a branch here.
 #ifndef RTB_OFFLINE_SCREEN_H
 #define RTB_OFFLINE_SCREEN_H
 
