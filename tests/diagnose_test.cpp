@@ -8,6 +8,8 @@
 // residual the named extension at least halves the held-out error.
 #include <gtest/gtest.h>
 
+#include <sys/wait.h>
+
 #include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -137,4 +139,46 @@ TEST(DiagnoseCli, ReportHasTheDocumentedKeys) {
   }
   std::ifstream h(hdr);
   EXPECT_TRUE(h.good());
+}
+
+#if !defined(__SANITIZE_ADDRESS__)  // statistics, not memory: the Release tree runs it
+// What-if mode (--causes): the imposed word is fitted and accepted although
+// plain data do not select it, and stage 5's verdict on it is still there.
+TEST(DiagnoseWhatIf, ImposedWordIsFittedAndReportedNotSelected) {
+  const Scenario sc = hidden_effect_scenario("none", kSeed, 0.005, 3.0);
+  DiagnoseOptions o;
+  o.imposed = {"viscous"};
+  const DiagnoseResult R = diagnose(sc.fit, sc.holdout, o);
+  EXPECT_TRUE(R.imposed);
+  ASSERT_EQ(R.causes.size(), 1u) << R.verdict;
+  EXPECT_EQ(R.cause, "viscous");
+  EXPECT_EQ(R.verdict.rfind("imposed causes", 0), 0u) << R.verdict;
+  // The first round is the diagnosis's (every word screened); the imposed
+  // word was fitted and judged, and not found eligible.
+  EXPECT_EQ(R.candidates.size(), candidate_vocabulary().size());
+  int fitted = 0;
+  for (const CandidateOutcome &co : R.candidates) {
+    if (co.cand.name != "viscous") continue;
+    ++fitted;
+    EXPECT_TRUE(co.joint);
+    EXPECT_FALSE(co.eligible) << "plain data selected a cause: " << R.verdict;
+    EXPECT_FALSE(co.why.empty());
+  }
+  EXPECT_EQ(fitted, 1);
+  // Without the imposition the same data give no cause.
+  o.imposed.clear();
+  EXPECT_EQ(diagnose(sc.fit, sc.holdout, o).cause, "none");
+}
+#endif
+
+TEST(DiagnoseCli, UnknownOrRepeatedWordIsAUsageErrorAndWritesNothing) {
+  const std::string out = std::string(RTB_BINARY_DIR) + "/diagnose_unknown_word.json";
+  std::remove(out.c_str());
+  for (const char *opt : {"--only viscous,slak", "--causes viscous,slak", "--causes slack,slack"}) {
+    const std::string cmd = std::string("'") + RTB_CLI_PATH + "' diagnose --data none.csv " + opt +
+                            " --out '" + out + "' 2> /dev/null";
+    const int rc = std::system(cmd.c_str());
+    EXPECT_TRUE(WIFEXITED(rc) && WEXITSTATUS(rc) == 2) << cmd;
+    EXPECT_FALSE(std::ifstream(out).good());
+  }
 }

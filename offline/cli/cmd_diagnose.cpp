@@ -15,6 +15,28 @@
 namespace rtb {
 namespace cli {
 
+namespace {
+
+// A comma-separated list of vocabulary words (--only, --causes); an unknown
+// word is a usage error, not a silently empty screen.
+std::vector<std::string> word_list(const Args &a, const char *option) {
+  std::vector<std::string> words;
+  if (!a.has(option)) return words;
+  const std::string s = a.get(option);
+  size_t pos = 0;
+  for (;;) {
+    const size_t e = s.find(',', pos);
+    const std::string w = s.substr(pos, e == std::string::npos ? std::string::npos : e - pos);
+    if (!is_candidate_name(w))
+      throw UsageError(std::string("--") + option + ": '" + w + "' is not a candidate (see --help)");
+    words.push_back(w);
+    if (e == std::string::npos) return words;
+    pos = e + 1;
+  }
+}
+
+}  // namespace
+
 int run_diagnose(int argc, char **argv) {
   static const CommandSpec spec{
       "diagnose",
@@ -31,6 +53,9 @@ int run_diagnose(int argc, char **argv) {
           {"cells", "N", "number of RT cells (default 15)"},
           {"fit-from", "S", "fit only samples from t0 + S on"},
           {"only", "LIST", "try only these candidates (comma separated)"},
+          {"causes", "LIST",
+           "what-if: fit these words in this order and accept them whatever the criteria say "
+           "(still reported)"},
           {"min-gain", "G", "relative held-out error reduction a cause must bring (default 0.15)"},
           {"threads", "N", "candidate fits in parallel (default 2)"},
           {"out", "FILE", "JSON report", true},
@@ -51,16 +76,12 @@ int run_diagnose(int argc, char **argv) {
   o.min_gain = a.get_double("min-gain", o.min_gain);
   o.threads = (int)a.get_int("threads", 2);
   o.quiet = a.has("quiet");
-  if (a.has("only")) {
-    std::string s = a.get("only");
-    size_t pos = 0;
-    while (pos <= s.size()) {
-      const size_t e = s.find(',', pos);
-      o.only.push_back(s.substr(pos, e == std::string::npos ? std::string::npos : e - pos));
-      if (e == std::string::npos) break;
-      pos = e + 1;
-    }
-  }
+  o.only = word_list(a, "only");
+  o.imposed = word_list(a, "causes");
+  for (size_t i = 0; i < o.imposed.size(); ++i)
+    for (size_t j = 0; j < i; ++j)
+      if (o.imposed[i] == o.imposed[j])
+        throw UsageError("--causes: '" + o.imposed[i] + "' is imposed twice");
   std::string why;
   const std::string name = a.get("name", "rtb_extended");
   if (a.has("header") && !is_valid_header_name(name, &why)) throw UsageError("--name: " + why);

@@ -78,6 +78,7 @@ nlohmann::ordered_json diagnosis_json(const DiagnoseResult &R, const std::vector
   nlohmann::ordered_json j;
   j["cause"] = R.cause;
   j["causes"] = causes_json(R);
+  j["imposed"] = R.imposed;  // --causes: a what-if, not a diagnosis
   j["verdict"] = R.verdict;
   j["physical"] = R.causes.empty() || R.causes.front().cand.physical;
   j["noise_floor"] = {{"error_fit", R.floor.error_fit},

@@ -83,13 +83,17 @@ double amplitude_z(const Candidate &c, const ExtFitResult &f) {
 
 // Stage 4: joint fits of the best-screened candidates (in parallel).
 void joint_fits(std::vector<CandidateOutcome> &out, const Current &cur, const Context &cx,
-                int how_many) {
+                int how_many, const std::string &imposed) {
   std::vector<size_t> order;
   for (size_t i = 0; i < out.size(); ++i)
     if (out[i].screen.z >= cx.opt.min_z) order.push_back(i);
   std::sort(order.begin(), order.end(),
             [&](size_t p, size_t q) { return out[p].screen.dJ > out[q].screen.dJ; });
   if ((int)order.size() > how_many) order.resize((size_t)how_many);
+  // What-if: the imposed word is fitted whatever its screen says.
+  for (size_t i = 0; i < out.size(); ++i)
+    if (out[i].cand.name == imposed && std::find(order.begin(), order.end(), i) == order.end())
+      order.push_back(i);
   parallel_for(order.size(), cx.opt.threads, [&](size_t k) {
     CandidateOutcome &co = out[order[k]];
     const auto t1 = Clock::now();
@@ -161,10 +165,14 @@ std::vector<CandidateOutcome> one_round(const Current &cur, const Context &cx, i
                                         DiagnoseResult &R) {
   std::vector<Candidate> cands;
   std::vector<CandidateOutcome> excluded;
+  const std::vector<std::string> &imposed = cx.opt.imposed;
   for (const Candidate &c : candidate_vocabulary()) {
     if (!cx.opt.only.empty() &&
         std::find(cx.opt.only.begin(), cx.opt.only.end(), c.name) == cx.opt.only.end())
       continue;
+    // A what-if's first round is the diagnosis's (its basin check sets the
+    // same baseline); later rounds look at the imposed word only.
+    if (round > 0 && !imposed.empty() && c.name != imposed[(size_t)round]) continue;
     bool clash = false;
     for (const Candidate &k : cur.causes) clash = clash || candidates_conflict(c, k);
     if (clash) continue;
@@ -191,7 +199,8 @@ std::vector<CandidateOutcome> one_round(const Current &cur, const Context &cx, i
   }
   R.seconds_screen += since(t_screen);
   const auto t_joint = Clock::now();
-  joint_fits(out, cur, cx, round == 0 ? cx.opt.joint_fits : cx.opt.joint_fits_next);
+  joint_fits(out, cur, cx, round == 0 ? cx.opt.joint_fits : cx.opt.joint_fits_next,
+             imposed.empty() ? std::string() : imposed[(size_t)round]);
   R.seconds_joint += since(t_joint);
   for (CandidateOutcome &co : out)
     judge(co, cur, cx, round == 0 ? cx.opt.min_gain : cx.opt.min_gain_next);
@@ -200,6 +209,18 @@ std::vector<CandidateOutcome> one_round(const Current &cur, const Context &cx, i
     out.push_back(co);
   }
   return out;
+}
+
+// What-if mode: the imposed word's joint fit with the lowest held-out error
+// (of its variants), eligible or not; nullptr if no fit succeeded.
+const CandidateOutcome *imposed_cause(const std::vector<CandidateOutcome> &round,
+                                      const std::string &name) {
+  const CandidateOutcome *pick = nullptr;
+  for (const CandidateOutcome &co : round)
+    if (co.cand.name == name && co.joint &&
+        (!pick || co.error_holdout_trimmed < pick->error_holdout_trimmed))
+      pick = &co;
+  return pick;
 }
 
 // Basin check of the first round: a candidate whose own term is
@@ -241,7 +262,7 @@ const char *pct(double e) {
 }
 
 std::string verdict_text(const DiagnoseResult &R, const DiagnoseOptions &opt) {
-  std::string v = "cause: ";
+  std::string v = R.imposed ? "imposed causes (what-if, not selected): " : "cause: ";
   if (R.causes.empty() && R.cause == "unexplained") {
     char b[200];
     std::snprintf(b, sizeof b, "unexplained (residual %.1fx the noise floor of %s; no candidate removes it): ",
@@ -283,6 +304,12 @@ bool gain_suffices(double gain, double current, double candidate, double floor, 
                    const DiagnoseOptions &opt) {
   return gain >= min_gain || (gain >= opt.min_gain_near_floor &&
                               excess_removed(current, candidate, floor) >= opt.min_excess_removed);
+}
+
+bool is_candidate_name(const std::string &name) {
+  for (const Candidate &c : candidate_vocabulary())
+    if (c.name == name) return true;
+  return false;
 }
 
 static size_t parameter_count(const Candidate &c) {
@@ -405,8 +432,12 @@ DiagnoseResult diagnose(const std::vector<Record> &fit_in, const std::vector<Rec
     return c.error_holdout > opt.floor_ratio * R.floor.error_holdout ||
            c.error_fit > opt.floor_ratio * R.floor.error_fit;
   };
+  const size_t n_imposed = opt.imposed.size();
+  R.imposed = n_imposed > 0;
   for (int round = 0;; ++round) {
-    const CandidateOutcome *best = select_cause(round_out, opt.parsimony);
+    const CandidateOutcome *best =
+        R.imposed ? imposed_cause(round_out, opt.imposed[(size_t)round])
+                  : select_cause(round_out, opt.parsimony);
     R.candidates.insert(R.candidates.end(), round_out.begin(), round_out.end());
     if (!best) break;
     R.causes.push_back(make_cause(*best, cur));
@@ -414,7 +445,9 @@ DiagnoseResult diagnose(const std::vector<Record> &fit_in, const std::vector<Rec
     causes.push_back(best->cand);
     R.extended_fit = best->fit;
     cur = make_current(best->fit.model, combined_spec(causes, cx.sc), causes, cx);
-    if (round + 1 >= opt.max_causes || !above_floor(cur)) break;
+    if (R.imposed ? (size_t)round + 1 >= n_imposed
+                  : (round + 1 >= opt.max_causes || !above_floor(cur)))
+      break;
     round_out = one_round(cur, cx, round + 1, R);
   }
   R.extended = cur.model;

@@ -87,6 +87,14 @@ struct DiagnoseOptions {
   int baseline_max_iter = 100;
   bool quiet = true;
   std::vector<std::string> only;  // restrict the candidates (empty = all)
+  // What-if mode (`rtb diagnose --causes`): these words are fitted in this
+  // order, one per round, and accepted whatever stage 5 says; its criteria
+  // are still computed and reported. The first round screens every word as
+  // the diagnosis does, so its basin check gives the same baseline; later
+  // rounds look at the imposed word only. To measure what a word the data
+  // do not select would give (VHB 4910: slack, docs/diagnosis_what_if.md).
+  // Empty: the diagnosis chooses.
+  std::vector<std::string> imposed;
 };
 
 struct CandidateOutcome {
@@ -111,6 +119,9 @@ struct CandidateOutcome {
 // nullptr when none is eligible.
 const CandidateOutcome *select_cause(const std::vector<CandidateOutcome> &round,
                                      double parsimony);
+
+// True when `name` is a word of the vocabulary (candidates.h).
+bool is_candidate_name(const std::string &name);
 
 // Stage 5's gain test. `gain`: the candidate's relative held-out gain
 // (trimmed); current / candidate / floor: eq. (27) errors on the selection
@@ -162,6 +173,7 @@ struct DiagnoseResult {
   std::vector<RecordResiduals> residuals;
   std::vector<CandidateOutcome> candidates;  // every round's
   std::vector<Cause> causes;
+  bool imposed = false;        // the causes were imposed (DiagnoseOptions::imposed)
   std::string cause = "none";  // causes[0]'s name, or "none" / "unexplained"
   bool residual_above_floor = false;  // after the causes found
   ResidualSignature signature;        // of the final residual (set when above the floor)
