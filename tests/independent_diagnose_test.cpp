@@ -101,4 +101,16 @@ TEST(IndependentDiagnose, MainsHumGetsNoPhysicalName) {
   EXPECT_TRUE(d.R.cause == "none" || d.R.cause == "unexplained") << d.R.verdict;
 }
 
+// A load cell that saturates below the loops' peaks records flat tops. No
+// word covers it: before stage 0 found it, a degressive cubic spring or a
+// softening spring imitated the tops (a wrong physical name).
+TEST(IndependentDiagnose, ClippedLoadCellIsUnexplainedAndNamed) {
+  RTB_SKIP_UNDER_SANITIZERS();
+  const Diagnosed d = diagnose_refgen("clipping", 1);
+  EXPECT_EQ(d.R.cause, "unexplained") << d.R.verdict;
+  EXPECT_TRUE(d.R.causes.empty()) << d.R.verdict;
+  EXPECT_FALSE(d.R.clipping.empty());
+  EXPECT_NE(d.R.verdict.find("clipped"), std::string::npos) << d.R.verdict;
+}
+
 #endif  // RTB_HAVE_OFFLINE

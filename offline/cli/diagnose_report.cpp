@@ -79,6 +79,15 @@ nlohmann::ordered_json diagnosis_json(const DiagnoseResult &R, const std::vector
   j["cause"] = R.cause;
   j["causes"] = causes_json(R);
   j["imposed"] = R.imposed;  // --causes: a what-if, not a diagnosis
+  nlohmann::ordered_json clip = nlohmann::ordered_json::array();
+  for (const ClippedRecord &c : R.clipping)
+    clip.push_back({{"file", c.file},
+                    {"top", c.top},
+                    {"bottom", c.bottom},
+                    {"level_top", c.level_top},
+                    {"level_bottom", c.level_bottom},
+                    {"samples", c.samples}});
+  j["clipping"] = clip;
   j["verdict"] = R.verdict;
   j["physical"] = R.causes.empty() || R.causes.front().cand.physical;
   j["noise_floor"] = {{"error_fit", R.floor.error_fit},

@@ -263,7 +263,10 @@ const char *pct(double e) {
 
 std::string verdict_text(const DiagnoseResult &R, const DiagnoseOptions &opt) {
   std::string v = R.imposed ? "imposed causes (what-if, not selected): " : "cause: ";
-  if (R.causes.empty() && R.cause == "unexplained") {
+  const std::string clipped = clipping_text(R.clipping, R.records);
+  if (R.causes.empty() && !clipped.empty()) {
+    v += "unexplained (" + clipped + ")";
+  } else if (R.causes.empty() && R.cause == "unexplained") {
     char b[200];
     std::snprintf(b, sizeof b, "unexplained (residual %.1fx the noise floor of %s; no candidate removes it): ",
                   R.baseline_error_holdout / std::max(R.floor.error_holdout, 1e-300),
@@ -280,6 +283,7 @@ std::string verdict_text(const DiagnoseResult &R, const DiagnoseOptions &opt) {
   char g[200];
   std::snprintf(g, sizeof g, " (gain %.0f%%)", 100.0 * R.gain);
   v += g;
+  if (!R.causes.empty() && !clipped.empty()) v += "; and " + clipped;
   if (!R.causes.empty() && R.residual_above_floor) {
     const double ratio = R.extended_error_holdout / std::max(R.floor.error_holdout, 1e-300);
     // A low-passed force (real-data preprocessing) has no white noise left:
@@ -371,6 +375,8 @@ DiagnoseResult diagnose(const std::vector<Record> &fit_in, const std::vector<Rec
   // 0. The model input: one decision for all records.
   std::vector<Record> both = concat(fit_in, holdout_in);
   R.denoise = denoise_displacement(both);
+  R.clipping = mask_force_clipping(both);
+  R.records = both.size();
   const std::vector<Record> fit(both.begin(), both.begin() + (long)fit_in.size());
   const std::vector<Record> holdout(both.begin() + (long)fit_in.size(), both.end());
   R.has_holdout = !holdout.empty();
@@ -458,8 +464,9 @@ DiagnoseResult diagnose(const std::vector<Record> &fit_in, const std::vector<Rec
   R.residual_above_floor = above_floor(cur);
   if (R.residual_above_floor)
     R.signature = residual_signature(R.extended, cx.all, R.residuals, opt.misfit);
+  // Clipped records: what the model misses there is the rig, not a word.
   R.cause = !R.causes.empty() ? R.causes.front().cand.name
-                              : (R.residual_above_floor ? "unexplained" : "none");
+                              : (R.residual_above_floor || !R.clipping.empty() ? "unexplained" : "none");
   R.gain = 1.0 - R.extended_error_holdout / R.baseline_error_holdout;
   R.verdict = verdict_text(R, opt);
   R.wall_seconds = since(t0);

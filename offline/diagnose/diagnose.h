@@ -3,7 +3,9 @@
 //
 // The pipeline (diagnose.cpp), one stage per function or file:
 // 0. input        a noisy displacement is low-passed for the model input
-//                 (displacement_noise.h: robust velocity and acceleration).
+//                 (displacement_noise.h: robust velocity and acceleration);
+//                 samples where the force channel saturated leave the misfit
+//                 (force_clipping.h), and the verdict names the saturation.
 // 1. baseline     plain RT on the fit records (STS start, trust region).
 // 2. noise floor  the white-noise level of the residual, estimated from the
 //                 data (noise_floor.h): how small the residual can get.
@@ -41,6 +43,7 @@
 
 #include "diagnose/candidates.h"
 #include "diagnose/displacement_noise.h"
+#include "diagnose/force_clipping.h"
 #include "diagnose/noise_floor.h"
 #include "diagnose/residual_analysis.h"
 #include "diagnose/screen.h"
@@ -169,6 +172,8 @@ struct DiagnoseResult {
   double baseline_error_holdout_trimmed = 0.0;
   bool has_holdout = false;
   DisplacementDenoise denoise; // stage 0's decision
+  std::vector<ClippedRecord> clipping;  // records whose force channel saturated
+  size_t records = 0;          // fit and held-out records diagnosed
   NoiseFloor floor;            // of the baseline residual
   std::vector<RecordResiduals> residuals;
   std::vector<CandidateOutcome> candidates;  // every round's

@@ -49,7 +49,7 @@ done
 
 singles="cubic_stiffness asymmetry maxwell viscous backlash backlash_held mullins delay inertia offset softening"
 hard="delay,asymmetry maxwell,offset backlash,cubic_stiffness viscous,cubic_stiffness inertia,backlash
-      slack relaxation_spectrum friction_asymmetry hum drift"
+      slack relaxation_spectrum friction_asymmetry hum drift clipping"
 on_seeds() {  # on_seeds "WORDS" "SEEDS"
   local w s
   for s in $2; do for w in $1; do printf '%s:%s ' "$w" "$s"; done; done

@@ -15,13 +15,13 @@ const std::vector<std::string> &effect_names() {
       "none",     "cubic_stiffness", "asymmetry", "maxwell",  "viscous",
       "backlash", "backlash_held",   "mullins",   "delay",    "inertia",
       "offset",   "softening",       "slack",     "relaxation_spectrum",
-      "friction_asymmetry",          "hum",       "drift"};
+      "friction_asymmetry",          "hum",       "drift",     "clipping"};
   return names;
 }
 
 std::string expected_word(const std::string &effect) {
   if (effect == "backlash_held") return "backlash";
-  if (effect == "hum" || effect == "drift") return "unexplained";
+  if (effect == "hum" || effect == "drift" || effect == "clipping") return "unexplained";
   return effect;
 }
 
@@ -92,6 +92,8 @@ void apply_effect(Scenario &sc, const std::string &e, Rng &rng) {
   }
   else if (e == "drift")  // stiffness changes 4-8% linearly over each record
     s.drift_rate = rng.sign() * rng.uniform(0.04, 0.08) / T;
+  else if (e == "clipping")  // the force channel saturates below the loops' peaks
+    c.clip = rng.uniform(0.75, 0.9) * Fel;
   else
     throw std::invalid_argument("unknown effect '" + e + "'");
 }

@@ -132,6 +132,11 @@ Samples run_record(const Specimen &s, const Command &cmd, const Chain &c) {
     r.x[k] = r.x_true[k] + c.disp_noise * xmax * rng.normal();
     r.F[k] = r.F_clean[k] + c.force_noise * Fmax * rng.normal();
   }
+  if (c.clip > 0.0)  // a saturating load cell (or its amplifier) clips what it records
+    for (size_t k = 0; k < n; ++k) {
+      r.F_clean[k] = std::fmax(-c.clip, std::fmin(c.clip, r.F_clean[k]));
+      r.F[k] = std::fmax(-c.clip, std::fmin(c.clip, r.F[k]));
+    }
   return r;
 }
 

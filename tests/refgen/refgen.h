@@ -94,6 +94,7 @@ struct Chain {
   double offset = 0.0;       // force sensor zero error [N]
   double hum = 0.0;          // 50 Hz mains hum amplitude on the force [N] (+30% at 150 Hz)
   double hum_phase = 0.0;
+  double clip = 0.0;         // load-cell saturation: |F| recorded at most this [N] (0 = off)
   unsigned long long seed = 1;  // noise stream
 };
 
