@@ -440,6 +440,16 @@ DiagnoseResult diagnose(const std::vector<Record> &fit_in, const std::vector<Rec
   };
   const size_t n_imposed = opt.imposed.size();
   R.imposed = n_imposed > 0;
+  // A saturated force channel hides the loops' extremes: a word fitted to
+  // what is left is not a measurement (refgen clipping_s4: with 45% of the
+  // fit samples held, a Maxwell branch and a clearance were fitted to the
+  // partial loops). The candidates stay in the report, none is named.
+  if (!R.clipping.empty() && opt.imposed.empty())
+    for (CandidateOutcome &co : round_out)
+      if (co.eligible) {
+        co.eligible = false;
+        co.why = "not named: the force channel is clipped (stage 0), the loops are partial";
+      }
   for (int round = 0;; ++round) {
     const CandidateOutcome *best =
         R.imposed ? imposed_cause(round_out, opt.imposed[(size_t)round])

@@ -5,7 +5,8 @@
 // 0. input        a noisy displacement is low-passed for the model input
 //                 (displacement_noise.h: robust velocity and acceleration);
 //                 samples where the force channel saturated leave the misfit
-//                 (force_clipping.h), and the verdict names the saturation.
+//                 (force_clipping.h), and the verdict names the saturation
+//                 instead of a cause fitted to the partial loops.
 // 1. baseline     plain RT on the fit records (STS start, trust region).
 // 2. noise floor  the white-noise level of the residual, estimated from the
 //                 data (noise_floor.h): how small the residual can get.
