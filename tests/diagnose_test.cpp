@@ -99,7 +99,17 @@ TEST(DiagnoseCli, ReportHasTheDocumentedKeys) {
     }
   const std::string out = dir + "/report.json", hdr = dir + "/ext.h";
   std::remove(out.c_str());
-  const std::string cmd = std::string("'") + RTB_CLI_PATH + "' diagnose --quiet" + args +
+#if defined(__SANITIZE_ADDRESS__)
+  // Memory, not statistics: three words keep the report's every path (38 s
+  // under ASan with the whole vocabulary).
+  const std::vector<std::string> words = {"cubic_stiffness", "delay", "offset"};
+  const std::string only = " --only cubic_stiffness,delay,offset";
+#else
+  std::vector<std::string> words;
+  for (const Candidate &c : candidate_vocabulary()) words.push_back(c.name);
+  const std::string only;
+#endif
+  const std::string cmd = std::string("'") + RTB_CLI_PATH + "' diagnose --quiet" + args + only +
                           " --out '" + out + "' --header '" + hdr + "' > /dev/null";
   ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
   std::ifstream f(out);
@@ -115,7 +125,7 @@ TEST(DiagnoseCli, ReportHasTheDocumentedKeys) {
   ASSERT_TRUE(j["candidates"].is_array());
   size_t first_round = 0;
   for (const auto &c : j["candidates"]) first_round += c["round"] == 0;
-  EXPECT_EQ(first_round, candidate_vocabulary().size());  // every cause but none
+  EXPECT_EQ(first_round, words.size());  // every word tried (variants count)
   // Issue #10's report: the causes with sizes and held-out gain, the noise
   // floor, and per-record figures of the extended model.
   ASSERT_TRUE(j["causes"].is_array());
@@ -164,10 +174,7 @@ TEST(DiagnoseWhatIf, ImposedWordIsFittedAndReportedNotSelected) {
     EXPECT_FALSE(co.eligible) << "plain data selected a cause: " << R.verdict;
     EXPECT_FALSE(co.why.empty());
   }
-  EXPECT_EQ(fitted, 1);
-  // Without the imposition the same data give no cause.
-  o.imposed.clear();
-  EXPECT_EQ(diagnose(sc.fit, sc.holdout, o).cause, "none");
+  EXPECT_EQ(fitted, 1);  // (without the imposition plain data give `none`: Seed5 "none")
 }
 #endif
 
