@@ -83,8 +83,6 @@ std::vector<ShapePass> spectrum_passes() {
           {spectrum_fastest_branch, {10.0, 30.0, 100.0}, 3.0}};
 }
 
-using Configure = void (*)(rtb_params &p, const DataScales &s);
-
 // A physical word: the extension parameters it frees.
 Candidate word(const char *name, std::vector<ParamId> extra, Configure configure = nullptr,
                const char *variant = "") {

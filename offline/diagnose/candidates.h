@@ -28,6 +28,8 @@ enum class ScreenMethod {
 
 // A model setting with a grid value g, on the data's scales.
 using ShapeSetter = void (*)(rtb_params &p, const DataScales &s, double g);
+// Model settings a word needs (flags, a branch time range).
+using Configure = void (*)(rtb_params &p, const DataScales &s);
 
 // One pass of a shape scan: the amplitude is linear at every grid value.
 // A pass keeps the shape the passes before it chose, or `fallback` for a
@@ -44,8 +46,7 @@ struct Candidate {
   std::vector<ParamId> extra; // extension parameters it frees
   bool delay = false, offset = false;
   std::string variant;        // a second definition of the same word ("held")
-  // Model settings the effect needs (flags, branch time range), or nullptr.
-  void (*configure)(rtb_params &p, const DataScales &s) = nullptr;
+  Configure configure = nullptr;  // or nullptr
   ScreenMethod screen = ScreenMethod::score;
   std::vector<ShapePass> passes;  // shape_scan
   // short_fit: one screen job per start (start_at puts it into the model),

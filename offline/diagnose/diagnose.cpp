@@ -47,6 +47,7 @@ struct Context {
   DataScales sc;
   std::vector<double> sigma;  // noise level per record of `all`
   double floor_sel = 0.0;     // the noise floor's eq. (27) error on `sel`
+  bool clipped = false;       // stage 0 found a saturated force channel
 };
 
 Current make_current(const ExtModel &m, const ExtFitSpec &spec, const std::vector<Candidate> &causes,
@@ -156,6 +157,12 @@ void judge(CandidateOutcome &co, const Current &cur, const Context &cx, double m
     co.why = cx.holdout.empty() ? "fit gain below min_gain" : "held-out gain below min_gain";
   else {
     co.why = contradiction(co.cand, co.fit.model, cur.model, cx.all, cx.sigma, opt.misfit);
+    // A saturated force channel hides the loops' extremes: a word fitted to
+    // what is left is not a measurement (refgen clipping_s4: with 45% of the
+    // fit samples held, a Maxwell branch and a clearance were fitted to the
+    // partial loops). The candidate stays in the report, unnamed.
+    if (co.why.empty() && cx.clipped)
+      co.why = "not named: the force channel is clipped (stage 0), the loops are partial";
     co.eligible = co.why.empty();
   }
 }
@@ -263,7 +270,7 @@ const char *pct(double e) {
 
 std::string verdict_text(const DiagnoseResult &R, const DiagnoseOptions &opt) {
   std::string v = R.imposed ? "imposed causes (what-if, not selected): " : "cause: ";
-  const std::string clipped = clipping_text(R.clipping, R.records);
+  const std::string clipped = clipping_text(R.clipping, R.extended_records.size());
   if (R.causes.empty() && !clipped.empty()) {
     v += "unexplained (" + clipped + ")";
   } else if (R.causes.empty() && R.cause == "unexplained") {
@@ -376,7 +383,6 @@ DiagnoseResult diagnose(const std::vector<Record> &fit_in, const std::vector<Rec
   std::vector<Record> both = concat(fit_in, holdout_in);
   R.denoise = denoise_displacement(both);
   R.clipping = mask_force_clipping(both);
-  R.records = both.size();
   const std::vector<Record> fit(both.begin(), both.begin() + (long)fit_in.size());
   const std::vector<Record> holdout(both.begin() + (long)fit_in.size(), both.end());
   R.has_holdout = !holdout.empty();
@@ -384,6 +390,7 @@ DiagnoseResult diagnose(const std::vector<Record> &fit_in, const std::vector<Rec
   hold_opt.fit_from = 0.0;
   Context cx{fit, holdout, concat(fit, holdout), R.has_holdout ? holdout : fit,
              R.has_holdout ? hold_opt : opt.misfit, opt, data_scales(fit), {}};
+  cx.clipped = !R.clipping.empty();
 
   // 1. Baseline: plain RT from the STS start.
   const rtb_params start = sts_initial_guess(fit, opt.cells, opt.alpha0, opt.misfit.fit_from);
@@ -440,16 +447,6 @@ DiagnoseResult diagnose(const std::vector<Record> &fit_in, const std::vector<Rec
   };
   const size_t n_imposed = opt.imposed.size();
   R.imposed = n_imposed > 0;
-  // A saturated force channel hides the loops' extremes: a word fitted to
-  // what is left is not a measurement (refgen clipping_s4: with 45% of the
-  // fit samples held, a Maxwell branch and a clearance were fitted to the
-  // partial loops). The candidates stay in the report, none is named.
-  if (!R.clipping.empty() && opt.imposed.empty())
-    for (CandidateOutcome &co : round_out)
-      if (co.eligible) {
-        co.eligible = false;
-        co.why = "not named: the force channel is clipped (stage 0), the loops are partial";
-      }
   for (int round = 0;; ++round) {
     const CandidateOutcome *best =
         R.imposed ? imposed_cause(round_out, opt.imposed[(size_t)round])

@@ -174,7 +174,6 @@ struct DiagnoseResult {
   bool has_holdout = false;
   DisplacementDenoise denoise; // stage 0's decision
   std::vector<ClippedRecord> clipping;  // records whose force channel saturated
-  size_t records = 0;          // fit and held-out records diagnosed
   NoiseFloor floor;            // of the baseline residual
   std::vector<RecordResiduals> residuals;
   std::vector<CandidateOutcome> candidates;  // every round's
