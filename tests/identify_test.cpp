@@ -10,6 +10,7 @@
 
 #include "offline/identify/identify.h"
 #include "offline/identify/sts_init.h"
+#include "offline/diagnose/extended_fit.h"
 #include "offline_test_records.h"
 
 using namespace rtb;
@@ -170,6 +171,40 @@ TEST(StsInit, FeaturesRobustToOnePercentNoise) {
     EXPECT_GT(r, 0.3) << param_name(id);
     EXPECT_LT(r, 3.5) << param_name(id);
   }
+}
+
+// A friction device (a Jenkins element: Kr = 1e-3 Kpa decouples the cells,
+// alpha near its floor): the friction start (sts_init.h) recovers the
+// elastic slope and the sliding level, and it fits better than the STS start
+// before any iteration, which is what makes the diagnosis identify from it
+// (diagnose.cpp, stage 1).
+TEST(StsInit, FrictionStartOnASlidingDevice) {
+  rtb_params truth;
+  rtb_params_default(&truth, RTB_MODEL_RT);
+  truth.K0 = 0.2;
+  truth.Kpa = 30.0;
+  truth.Kr = 0.03;
+  truth.C0 = 2.5;
+  truth.alpha = 0.01;
+  const std::vector<Record> recs = rtb_test::paper_records(truth, 6.0);
+  const rtb_params f = friction_initial_guess(recs, truth.cells, 1.0);
+  EXPECT_NEAR(f.Kpa / truth.Kpa, 1.0, 0.5);
+  EXPECT_LT(f.K0, 0.2 * f.Kpa);
+  EXPECT_LT(f.Kr, 1e-2 * f.Kpa);
+  // The sliding level C0 |v|^alpha at the records' mean speed.
+  LoopFeatures feat;
+  sts_initial_guess(recs, truth.cells, 0.2, 1.0, &feat);
+  const double level = f.C0 * std::pow(feat.V0, f.alpha);
+  EXPECT_NEAR(level / (truth.C0 * std::pow(feat.V0, truth.alpha)), 1.0, 0.25);
+  ExtModel at_friction, at_sts;
+  at_friction.p = f;
+  at_sts.p = sts_initial_guess(recs, truth.cells, 0.2, 1.0);
+  const double e_f = extended_error(at_friction, recs, MisfitOptions());
+  const double e_s = extended_error(at_sts, recs, MisfitOptions());
+  std::printf("[identify] sliding device: start error %.1f%% (friction) vs %.1f%% (STS)\n",
+              100 * e_f, 100 * e_s);
+  EXPECT_LT(e_f, e_s);
+  EXPECT_LT(e_f, 0.3);
 }
 
 TEST(StsInit, IdentificationFromStsStartConverges) {

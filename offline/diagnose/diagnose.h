@@ -26,9 +26,14 @@
 //                 lowest held-out error among the eligible wins, unless a
 //                 candidate with fewer parameters comes within `parsimony`
 //                 of it (a two-parameter relaxation spectrum imitates a
-//                 viscous dashpot: the simpler word is then the cause); stages 3-5 repeat at the extended model while a
-//                 further cause still pays on held-out data and the residual
-//                 is above the noise floor (several causes).
+//                 viscous dashpot: the simpler word is then the cause).
+//                 The accepted cause's model is refitted once from the STS
+//                 start of the records its artefacts removed (the joint fit
+//                 began in the basin that compensated for the missing cause);
+//                 the refit stands if it fits better. Stages 3-5 repeat at the
+//                 extended model while a further cause still pays on held-out
+//                 data and the residual is above the noise floor (several
+//                 causes).
 // 6. report       causes, or `none` when the baseline is at the noise floor,
 //                 or `unexplained` with the residual's signature (band, trend,
 //                 where in the cycle) when it is above the floor and no
@@ -76,6 +81,9 @@ struct DiagnoseOptions {
   // eq. (27) error (noise_floor.h); above it, no candidate means `unexplained`.
   double floor_ratio = 1.3;
   int max_causes = 3;
+  // After a cause is accepted, a refit from the STS start replaces the
+  // accepted fit when its fit error is lower by more than this fraction.
+  double refit_margin = 0.01;
   int threads = 2;
   // Candidates fitted jointly after screening: the first round, later rounds.
   // The screen underrates an effect the baseline has absorbed on the fit

@@ -239,4 +239,21 @@ ExtFitResult fit_extended(const std::vector<Record> &recs, const ExtModel &start
   return out;
 }
 
+std::vector<Record> artefact_corrected(const std::vector<Record> &recs, const ExtModel &m) {
+  std::vector<Record> out = recs;
+  for (size_t r = 0; r < recs.size(); ++r) {
+    const std::vector<double> &t = recs[r].t, &F = recs[r].F;
+    const size_t n = t.size();
+    size_t k = 0;
+    for (size_t j = 0; j < n; ++j) {
+      const double u = t[j] + m.delay;
+      while (k + 1 < n && t[k + 1] <= u) ++k;
+      const double w = k + 1 < n ? (u - t[k]) / (t[k + 1] - t[k]) : 0.0;
+      const double Fu = k + 1 < n ? F[k] + w * (F[k + 1] - F[k]) : F[n - 1];
+      out[r].F[j] = Fu - m.offset;
+    }
+  }
+  return out;
+}
+
 }  // namespace rtb

@@ -61,6 +61,11 @@ void predict_extended(const ExtModel &m, const Record &rec, const SimOptions &si
 ExtFitResult fit_extended(const std::vector<Record> &recs, const ExtModel &start,
                           const ExtFitSpec &spec, const MisfitOptions &opt);
 
+// The records as the element would see them: the model's force-channel
+// artefacts removed, F_corrected(t) = F(t + delay) - offset (linear
+// interpolation; the last `delay` seconds hold the final sample).
+std::vector<Record> artefact_corrected(const std::vector<Record> &recs, const ExtModel &m);
+
 // sqrt(sum J / sum J0) of a model on records (eq. (27)), and its J, J0.
 // trim > 0 drops that fraction of the largest squared residuals of each
 // record from J (a robust variant used to select causes, never reported as

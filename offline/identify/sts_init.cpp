@@ -188,4 +188,17 @@ rtb_params sts_initial_guess(const std::vector<Record> &recs, int cells, double 
   return rt_start_from_sts(s, best, cells, alpha0, note);
 }
 
+rtb_params friction_initial_guess(const std::vector<Record> &recs, int cells, double fit_from) {
+  LoopFeatures f;
+  rtb_params p = sts_initial_guess(recs, cells, 0.2, fit_from, &f);
+  const double alpha = 0.02;  // rate-independent to within 2% per decade of velocity
+  p.K0 = std::fmax(f.Tg2, 0.0);
+  p.Kpa = std::fmax(f.Tg1 - p.K0, 0.5 * f.Ksec);
+  p.Kr = 1e-3 * p.Kpa;
+  const double level = f.Fmax - p.K0 * f.Xmax;
+  p.alpha = alpha;
+  p.C0 = (level > 0.0 ? level : 0.5 * f.Fmax) / std::pow(std::fmax(f.V0, 1e-300), alpha);
+  return p;
+}
+
 }  // namespace rtb

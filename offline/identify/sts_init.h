@@ -45,6 +45,14 @@ rtb_params sts_initial_guess(const std::vector<Record> &recs, int cells, double 
                              double fit_from, LoopFeatures *feat = nullptr,
                              StsParams *sts = nullptr, std::string *note = nullptr);
 
+// A friction-device start: a Jenkins element, one slider carrying the load
+// (the cells decoupled by Kr = 1e-3 Kpa) at a small alpha, with K0 = Tg2 the
+// slope while sliding, Kpa = Tg1 - K0 and the slider level Fmax - K0 Xmax.
+// On a device that slides, plain RT from the STS start can end in a viscous
+// basin (the friction damper's dataset-3 sines: fit 48% with alpha 0.61,
+// against 21.5% with alpha 0.05 from this start).
+rtb_params friction_initial_guess(const std::vector<Record> &recs, int cells, double fit_from);
+
 }  // namespace rtb
 
 #endif
