@@ -212,6 +212,30 @@ TEST_F(CliTest, ValidateSelfConsistentRecordHasZeroError) {
   EXPECT_LT(doc["files"][0]["error"].get<double>(), 1e-12);
 }
 
+// --init friction: a sliding device (one slider, Kr = 1e-3 Kpa, alpha near
+// its floor) is identified from the Jenkins start built from its own loop
+// features (sts_init.h), and the JSON says which start was used.
+TEST_F(CliTest, IdentifyFromTheFrictionStartFitsASlidingDevice) {
+  const std::string in = make_input("x.csv", 1200);
+  write_text(file("dev.json"),
+             "{\"model\":\"rt\",\"cells\":9,\"params\":{\"K0\":0.2,\"Kpa\":30,\"Kr\":0.03,"
+             "\"C0\":2.5,\"alpha\":0.01}}\n");
+  const std::string sim = file("sim.csv");
+  ASSERT_EQ(rtb("simulate --quiet --params " + shell_quote(file("dev.json")) + " --input " +
+                shell_quote(in) + " --out " + shell_quote(sim))
+                .code,
+            0);
+  const std::string id = file("id.json");
+  const CmdResult r = rtb("identify --quiet --init friction --cells 9 --data " + shell_quote(sim) +
+                          " --out " + shell_quote(id));
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto doc = nlohmann::json::parse(read_text(id));
+  EXPECT_EQ(doc["init"], "friction");
+  EXPECT_LT(doc["error"].get<double>(), 0.01) << r.out;
+  std::printf("[cli] friction start: error %.2e -> %.2e\n", doc["error_start"].get<double>(), doc["error"].get<double>());
+  EXPECT_LT(doc["error"].get<double>(), doc["error_start"].get<double>());
+}
+
 TEST_F(CliTest, ValidateMatchesMisfitNormsOverSeveralFiles) {
   const std::string params = make_params("p.json");
   const std::string a = make_input("a.csv", 500, true);

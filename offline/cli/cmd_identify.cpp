@@ -35,7 +35,9 @@ CommandSpec identify_spec() {
                                 "instead of records (--init table: start from the table)"},
       }),
       "--init sts (default) derives the start from the STS loop features, eq. (17)-(26),\n"
-      "and prints them (the paper's Table 5). Records that do not start at x = 0 are\n"
+      "and prints them (the paper's Table 5). --init friction starts from a one-slider\n"
+      "friction device (a Jenkins element from the same features): for devices that\n"
+      "slide, where the STS start can end in a viscous basin. Records that do not start at x = 0 are\n"
       "preceded by a linear ramp from rest (not part of the misfit). With --dynstiff the\n"
       "misfit is the relative error of the complex stiffness (ln|K*|, loss angle in rad)\n"
       "over periodic runs from rest, its gradient the adjoint through those runs."};

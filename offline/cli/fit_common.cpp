@@ -15,7 +15,7 @@ std::vector<OptionSpec> fit_option_specs(std::vector<OptionSpec> extra) {
       {"data", "FILE", "record CSV (time,displacement,force); repeat for several", true, true},
       {"cells", "N", "number of RT cells (default 15)"},
       {"method", "M", "trust-region (default) or bfgs"},
-      {"init", "sts|FILE", "start point: STS loop inversion (default) or a parameter JSON"},
+      {"init", "sts|friction|FILE", "start point: STS loop inversion (default), a one-slider friction device, or a parameter JSON"},
       {"alpha0", "A", "alpha of the STS start, eq. (26) (default 0.2)"},
       {"fit-from", "S", "fit only samples from t0 + S on (stabilized cycles)"},
       {"ramp-time", "S", "ramp from rest to x[0] for records not starting at 0 (default auto)"},
@@ -68,6 +68,8 @@ FitSetup parse_fit_setup(const Args &a) {
     fs.start = sts_initial_guess(fs.recs, (int)cells, fs.alpha0, fs.opt.misfit.fit_from,
                                  &fs.features, &fs.sts, &fs.sts_note);
     fs.sts_used = true;
+  } else if (fs.init == "friction") {
+    fs.start = friction_initial_guess(fs.recs, (int)cells, fs.opt.misfit.fit_from);
   } else {
     fs.start = read_params_json(fs.init);
     if (fs.start.model != RTB_MODEL_RT) throw InputError(fs.init + ": identify needs an \"rt\" model");
