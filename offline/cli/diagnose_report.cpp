@@ -79,6 +79,12 @@ nlohmann::ordered_json diagnosis_json(const DiagnoseResult &R, const std::vector
   j["cause"] = R.cause;
   j["causes"] = causes_json(R);
   j["imposed"] = R.imposed;  // --causes: a what-if, not a diagnosis
+  // Earlier causes a later one made redundant (stage 5d).
+  nlohmann::json dropped = nlohmann::json::array();
+  for (const DiagnoseResult::Dropped &d : R.dropped)
+    dropped.push_back({{"name", d.name}, {"error_holdout_without", d.error_without},
+                       {"error_holdout_with", d.error_with}});
+  j["dropped"] = dropped;
   nlohmann::ordered_json clip = nlohmann::ordered_json::array();
   for (const ClippedRecord &c : R.clipping)
     clip.push_back({{"file", c.file},

@@ -245,6 +245,50 @@ bool refit_from_sts(const Current &cur, const Context &cx, ExtFitResult &fit) {
   return true;
 }
 
+// Stage 5d: does each earlier cause still pay now that a later one is in?
+// A simpler word can stand in for the real one first and the real one
+// follow (refgen relaxation_spectrum_s4: a single Maxwell branch, then the
+// spectrum, 1.49% held out, and the spectrum alone 1.49%). An earlier cause
+// whose removal (its sizes zeroed, the rest refitted) keeps the held-out
+// error within what a further cause must gain (gain_suffices with
+// min_gain_next, as when it was accepted) is dropped. Only words switched
+// off by zeroing their sizes are tried (not a held clearance, slack or the
+// spectrum, whose settings come with them). Returns the index dropped, or -1.
+int drop_redundant(Current &cur, const Context &cx, DiagnoseResult &R) {
+  const DiagnoseOptions &opt = cx.opt;
+  for (size_t i = 0; i + 1 < cur.causes.size(); ++i) {
+    const Candidate &c = cur.causes[i];
+    if (c.configure) continue;
+    std::vector<Candidate> keep = cur.causes;
+    keep.erase(keep.begin() + (long)i);
+    ExtModel start = cur.model;
+    for (ParamId id : c.extra) param_ref(start.p, id) = 0.0;
+    if (c.delay) start.delay = 0.0;
+    if (c.offset) start.offset = 0.0;
+    const ExtFitSpec spec = combined_spec(keep, cx.sc);
+    ExtFitResult f;
+    try {
+      f = fit_extended(cx.fit, start, spec, opt.misfit);
+    } catch (const std::exception &) {
+      continue;
+    }
+    const Current without = make_current(f.model, spec, keep, cx);
+    const double gain = 1.0 - cur.error_holdout_trimmed / without.error_holdout_trimmed;
+    if (gain_suffices(gain, without.error_holdout, cur.error_holdout, cx.floor_sel,
+                      opt.min_gain_next, opt))
+      continue;
+    if (!opt.quiet)
+      std::fprintf(stderr, "diagnose: %s no longer pays after %s (held-out %.3f%% without it, "
+                   "%.3f%% with it): dropped\n", c.name.c_str(), cur.causes.back().name.c_str(),
+                   100 * without.error_holdout, 100 * cur.error_holdout);
+    R.dropped.push_back({c.name, without.error_holdout, cur.error_holdout});
+    R.extended_fit = f;
+    cur = without;
+    return (int)i;
+  }
+  return -1;
+}
+
 // What-if mode: the imposed word's joint fit with the lowest held-out error
 // (of its variants), eligible or not; nullptr if no fit succeeded.
 const CandidateOutcome *imposed_cause(const std::vector<CandidateOutcome> &round,
@@ -517,6 +561,10 @@ DiagnoseResult diagnose(const std::vector<Record> &fit_in, const std::vector<Rec
     }
     R.causes.push_back(make_cause(accepted, before));
     R.extended_fit = accepted.fit;
+    if (!R.imposed) {
+      const int gone = drop_redundant(cur, cx, R);
+      if (gone >= 0) R.causes.erase(R.causes.begin() + gone);
+    }
     if (R.imposed ? (size_t)round + 1 >= n_imposed
                   : (round + 1 >= opt.max_causes || !above_floor(cur)))
       break;

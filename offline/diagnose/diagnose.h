@@ -186,6 +186,13 @@ struct DiagnoseResult {
   std::vector<RecordResiduals> residuals;
   std::vector<CandidateOutcome> candidates;  // every round's
   std::vector<Cause> causes;
+  // Earlier causes a later one made redundant (stage 5d), with the held-out
+  // error (eq. (27)) without and with them.
+  struct Dropped {
+    std::string name;
+    double error_without = 0.0, error_with = 0.0;
+  };
+  std::vector<Dropped> dropped;
   bool imposed = false;        // the causes were imposed (DiagnoseOptions::imposed)
   std::string cause = "none";  // causes[0]'s name, or "none" / "unexplained"
   bool residual_above_floor = false;  // after the causes found
