@@ -133,6 +133,7 @@ TEST(DiagnoseCli, ReportHasTheDocumentedKeys) {
   EXPECT_EQ(j["causes"][0]["name"], "offset");
   EXPECT_TRUE(j["causes"][0]["size"]["offset"]["value"].is_number());
   EXPECT_TRUE(j["causes"][0]["gain"].is_number());
+  EXPECT_TRUE(j["dropped"].is_array());  // stage 5d: none here (one cause)
   EXPECT_GT(j["noise_floor"]["error_holdout"].get<double>(), 0.0);
   ASSERT_EQ(j["extended"]["records"].size(), sc.fit.size() + sc.holdout.size());
   for (const auto &r : j["extended"]["records"]) {

@@ -30,10 +30,11 @@
 //                 The accepted cause's model is refitted once from the STS
 //                 start of the records its artefacts removed (the joint fit
 //                 began in the basin that compensated for the missing cause);
-//                 the refit stands if it fits better. Stages 3-5 repeat at the
-//                 extended model while a further cause still pays on held-out
-//                 data and the residual is above the noise floor (several
-//                 causes).
+//                 the refit stands if it fits better. An earlier cause that
+//                 no longer pays once the new one is in is dropped. Stages
+//                 3-5 repeat at the extended model while a further cause
+//                 still pays on held-out data and the residual is above the
+//                 noise floor (several causes).
 // 6. report       causes, or `none` when the baseline is at the noise floor,
 //                 or `unexplained` with the residual's signature (band, trend,
 //                 where in the cycle) when it is above the floor and no
