@@ -82,6 +82,9 @@ struct DiagnoseOptions {
   // eq. (27) error (noise_floor.h); above it, no candidate means `unexplained`.
   double floor_ratio = 1.3;
   int max_causes = 3;
+  // Stage 1: the friction start's baseline replaces the STS start's when
+  // its fit error is below this fraction of it.
+  double friction_start_margin = 0.8;
   // After a cause is accepted, a refit from the STS start replaces the
   // accepted fit when its fit error is lower by more than this fraction.
   double refit_margin = 0.01;
