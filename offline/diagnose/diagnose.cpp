@@ -449,14 +449,17 @@ std::vector<RecordFigures> record_figures(const ExtModel &m, const std::vector<R
 
 // Stage 1: plain RT from the STS start (section 5.4). A device that slides
 // can send that fit to a viscous basin (the friction damper's dataset-3 sines:
-// 48% with alpha 0.61); when the friction start (sts_init.h) already fits
-// better before any iteration, it is identified too and its end kept when
-// it fits clearly better (friction_start_margin).
-// Costs one forward run when the STS start is the better one.
+// 48% with alpha 0.61). When that fit leaves more than friction_start_above
+// of the force unexplained and the friction start (sts_init.h) fits better
+// before any iteration, it is identified too, and its end kept when it fits
+// clearly better (friction_start_margin). On refgen's 92 cases the STS end
+// is at most 17.9% (asymmetry_s2); the friction start is tried on the two
+// above 15% and its end, 0.1-0.4% higher, not kept.
 IdentifyResult baseline_fit(const std::vector<Record> &fit, const DiagnoseOptions &opt,
                             const IdentifyOptions &io) {
   const rtb_params sts = sts_initial_guess(fit, opt.cells, opt.alpha0, opt.misfit.fit_from);
   IdentifyResult best = identify(fit, sts, io);
+  if (!(best.error > opt.friction_start_above)) return best;
   rtb_params friction;
   try {
     friction = friction_initial_guess(fit, opt.cells, opt.misfit.fit_from);

@@ -82,8 +82,11 @@ struct DiagnoseOptions {
   // eq. (27) error (noise_floor.h); above it, no candidate means `unexplained`.
   double floor_ratio = 1.3;
   int max_causes = 3;
-  // Stage 1: the friction start's baseline replaces the STS start's when
-  // its fit error is below this fraction of it.
+  // Stage 1: the friction start is tried when the STS start's baseline fit
+  // error is above friction_start_above (damper: 47-48%), and its baseline
+  // replaces the STS start's when its fit error is below
+  // friction_start_margin times it.
+  double friction_start_above = 0.15;
   double friction_start_margin = 0.8;
   // After a cause is accepted, a refit from the STS start replaces the
   // accepted fit when its fit error is lower by more than this fraction.
