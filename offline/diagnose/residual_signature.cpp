@@ -6,7 +6,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "diagnose/diagnose.h"
+#include "diagnose/diagnose_stages.h"
 
 namespace rtb {
 
@@ -55,6 +55,8 @@ double feature_share(const std::vector<double> &e, const std::vector<double> &g)
 }
 
 }  // namespace
+
+namespace diag {
 
 ResidualSignature residual_signature(const ExtModel &m, const std::vector<Record> &recs,
                                      const std::vector<RecordResiduals> &where,
@@ -140,4 +142,5 @@ ResidualSignature residual_signature(const ExtModel &m, const std::vector<Record
   return sig;
 }
 
+}  // namespace diag
 }  // namespace rtb

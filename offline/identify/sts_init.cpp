@@ -188,9 +188,8 @@ rtb_params sts_initial_guess(const std::vector<Record> &recs, int cells, double 
   return rt_start_from_sts(s, best, cells, alpha0, note);
 }
 
-rtb_params friction_initial_guess(const std::vector<Record> &recs, int cells, double fit_from) {
-  LoopFeatures f;
-  rtb_params p = sts_initial_guess(recs, cells, 0.2, fit_from, &f);
+rtb_params friction_initial_guess(const rtb_params &sts_start, const LoopFeatures &f) {
+  rtb_params p = sts_start;
   const double alpha = 0.02;  // rate-independent to within 2% per decade of velocity
   p.K0 = std::fmax(f.Tg2, 0.0);
   p.Kpa = std::fmax(f.Tg1 - p.K0, 0.5 * f.Ksec);
@@ -199,6 +198,12 @@ rtb_params friction_initial_guess(const std::vector<Record> &recs, int cells, do
   p.alpha = alpha;
   p.C0 = (level > 0.0 ? level : 0.5 * f.Fmax) / std::pow(std::fmax(f.V0, 1e-300), alpha);
   return p;
+}
+
+rtb_params friction_initial_guess(const std::vector<Record> &recs, int cells, double fit_from) {
+  LoopFeatures f;
+  const rtb_params sts = sts_initial_guess(recs, cells, 0.2, fit_from, &f);
+  return friction_initial_guess(sts, f);
 }
 
 }  // namespace rtb

@@ -52,6 +52,9 @@ rtb_params sts_initial_guess(const std::vector<Record> &recs, int cells, double 
 // basin (the friction damper's dataset-3 sines: fit 48% with alpha 0.61,
 // against 21.5% with alpha 0.05 from this start).
 rtb_params friction_initial_guess(const std::vector<Record> &recs, int cells, double fit_from);
+// The same from features already measured (`sts_start` from
+// sts_initial_guess on the same records: its cell count and extensions).
+rtb_params friction_initial_guess(const rtb_params &sts_start, const LoopFeatures &f);
 
 }  // namespace rtb
 

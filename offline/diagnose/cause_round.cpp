@@ -1,0 +1,255 @@
+// cause_round.cpp -- stages 3-5a of the diagnosis (diagnose.h): one round
+// at the current model. Every remaining word of the vocabulary is screened
+// (screen.h), the most promising are fitted jointly with the current model
+// (extended_fit.h), and each outcome is judged: significance, delta BIC,
+// held-out gain, plausibility. Stage 5's choice among the judged
+// (select_cause) and the gain test it shares with stage 5d are here too.
+#include <algorithm>
+#include <cmath>
+
+#include "diagnose/diagnose_stages.h"
+#include "diagnose/plausibility.h"
+#include "model/parallel_for.h"
+
+namespace rtb {
+namespace diag {
+
+Current make_current(const ExtModel &m, const ExtFitSpec &spec, const std::vector<Candidate> &causes,
+                     const Context &cx) {
+  Current c;
+  c.model = m;
+  c.spec = spec;
+  c.causes = causes;
+  c.error_fit = extended_error(m, cx.fit, cx.opt.misfit);
+  extended_error(m, cx.fit, cx.opt.misfit, &c.J_trim, nullptr, cx.opt.trim);
+  c.error_holdout = extended_error(m, cx.sel, cx.sel_opt);
+  c.error_holdout_trimmed = extended_error(m, cx.sel, cx.sel_opt, nullptr, nullptr, cx.opt.trim);
+  return c;
+}
+
+namespace {
+
+// Size of the effect (its first parameter, or the delay / offset) over its
+// standard deviation: the Wald z. NaN when the fit has no finite standard
+// deviation for it (a size at a clamp, a singular covariance).
+double amplitude_z(const Candidate &c, const ExtFitResult &f) {
+  std::string amp;
+  if (!c.extra.empty()) amp = param_name(c.extra[0]);
+  else if (c.delay) amp = "delay";
+  else if (c.offset) amp = "offset";
+  else return INFINITY;  // a switch (slack): judged by BIC and gain alone
+  for (size_t i = 0; i < f.names.size(); ++i)
+    if (f.names[i] == amp) {
+      const double sd = f.stddev_valid ? f.stddev[(Eigen::Index)i] : NAN;
+      if (!std::isfinite(sd)) return NAN;  // no Wald figure: see evaluate()
+      return sd > 0.0 ? std::fabs(f.value[(Eigen::Index)i]) / sd : INFINITY;
+    }
+  return 0.0;
+}
+
+// Stage 4: joint fits of the best-screened candidates (in parallel).
+void joint_fits(std::vector<CandidateOutcome> &out, const Current &cur, const Context &cx,
+                int how_many, const std::string &imposed) {
+  std::vector<size_t> order;
+  for (size_t i = 0; i < out.size(); ++i)
+    if (out[i].screen.z >= cx.opt.min_z) order.push_back(i);
+  std::sort(order.begin(), order.end(),
+            [&](size_t p, size_t q) { return out[p].screen.dJ > out[q].screen.dJ; });
+  if ((int)order.size() > how_many) order.resize((size_t)how_many);
+  // What-if: the imposed word is fitted whatever its screen says.
+  for (size_t i = 0; i < out.size(); ++i)
+    if (out[i].cand.name == imposed && std::find(order.begin(), order.end(), i) == order.end())
+      order.push_back(i);
+  parallel_for(order.size(), cx.opt.threads, [&](size_t k) {
+    CandidateOutcome &co = out[order[k]];
+    const auto t1 = Clock::now();
+    std::vector<Candidate> with = cur.causes;
+    with.push_back(co.cand);
+    try {
+      co.fit = fit_extended(cx.fit, co.screen.start, combined_spec(with, cx.sc), cx.opt.misfit);
+      co.joint = std::isfinite(co.fit.J);
+      if (!co.joint) co.why = "joint fit failed: non-finite misfit";
+    } catch (const std::exception &e) {
+      co.joint = false;
+      co.why = std::string("joint fit failed: ") + e.what();
+    }
+    co.fit_seconds = since(t1);
+  });
+}
+
+// Stage 5a: the criteria of one candidate against the current model.
+void judge(CandidateOutcome &co, const Current &cur, const Context &cx, double min_gain) {
+  const DiagnoseOptions &opt = cx.opt;
+  if (!co.joint) {
+    co.error_holdout = NAN;
+    co.fit.error = NAN;
+    if (co.why.empty())
+      co.why = co.screen.z < opt.min_z ? "screened out: effect not significant"
+                                        : "screened out: smaller misfit reduction than others";
+    return;
+  }
+  const double k = (double)(co.cand.extra.size() + co.cand.delay + co.cand.offset +
+                            (co.cand.extra.empty() && !co.cand.delay && !co.cand.offset));
+  const double ms = (double)co.fit.samples;
+  // On trimmed misfits, like the selection figure: isolated spikes (e.g. at
+  // ideal input corners) must not decide in either direction.
+  double Jc_trim = 0;
+  extended_error(co.fit.model, cx.fit, opt.misfit, &Jc_trim, nullptr, opt.trim);
+  co.dbic = ms * std::log(cur.J_trim / Jc_trim) - k * std::log(ms);
+  co.error_holdout = extended_error(co.fit.model, cx.sel, cx.sel_opt);
+  co.error_holdout_trimmed = extended_error(co.fit.model, cx.sel, cx.sel_opt, nullptr, nullptr, opt.trim);
+  co.gain = 1.0 - co.error_holdout_trimmed / cur.error_holdout_trimmed;
+  co.amplitude_z = amplitude_z(co.cand, co.fit);
+  // At a clamp the Wald z does not exist; the likelihood ratio of the fit
+  // against the current model (one added parameter) still measures it.
+  if (std::isnan(co.amplitude_z))
+    co.amplitude_z = std::sqrt(std::max(0.0, ms * std::log(cur.J_trim / Jc_trim)));
+  // A Maxwell branch whose relaxation time is below the sample interval acts
+  // as a linear dashpot c = k tau: the data cannot tell it from `viscous`.
+  const bool unresolved_tau =
+      co.cand.name == "maxwell" && co.fit.model.p.maxwell_tau < 2.0 * cx.sc.dt;
+  // A size pinned at the edge of its admissible range (a dashpot level
+  // asymmetry of 95%, a Mullins loss of 95%) is the fit compensating for
+  // something else with the nearest freedom it has, not a measurement of it.
+  const bool at_bound = (co.cand.name == "friction_asymmetry" &&
+                         std::fabs(co.fit.model.p.fric_asym) >= 0.94) ||
+                        (co.cand.name == "mullins" && co.fit.model.p.mullins >= 0.94);
+  if (co.amplitude_z < opt.min_z) co.why = "effect not significant (z < min_z)";
+  else if (at_bound) co.why = "size at the bound of its admissible range: a compensation, not a measurement";
+  else if (unresolved_tau) co.why = "relaxation time below 2 sample intervals: a viscous dashpot";
+  else if (co.dbic < opt.min_dbic) co.why = "fit gain explained by the extra parameters (delta BIC)";
+  else if (!gain_suffices(co.gain, cur.error_holdout, co.error_holdout, cx.floor_sel, min_gain, opt))
+    co.why = cx.holdout.empty() ? "fit gain below min_gain" : "held-out gain below min_gain";
+  else {
+    co.why = contradiction(co.cand, co.fit.model, cur.model, cx.all, cx.sigma, opt.misfit);
+    // A saturated force channel hides the loops' extremes: a word fitted to
+    // what is left is not a measurement (refgen clipping_s4: with 45% of the
+    // fit samples held, a Maxwell branch and a clearance were fitted to the
+    // partial loops). The candidate stays in the report, unnamed.
+    if (co.why.empty() && cx.clipped)
+      co.why = "not named: the force channel is clipped (stage 0), the loops are partial";
+    co.eligible = co.why.empty();
+  }
+}
+
+}  // namespace
+
+// Stages 3-5 at the current model: the outcomes of every remaining candidate.
+std::vector<CandidateOutcome> one_round(const Current &cur, const Context &cx, int round,
+                                        DiagnoseResult &R) {
+  std::vector<Candidate> cands;
+  std::vector<CandidateOutcome> excluded;
+  const std::vector<std::string> &imposed = cx.opt.imposed;
+  for (const Candidate &c : candidate_vocabulary()) {
+    if (!cx.opt.only.empty() &&
+        std::find(cx.opt.only.begin(), cx.opt.only.end(), c.name) == cx.opt.only.end())
+      continue;
+    // A what-if's first round is the diagnosis's (its basin check sets the
+    // same baseline); later rounds look at the imposed word only.
+    if (round > 0 && !imposed.empty() && c.name != imposed[(size_t)round]) continue;
+    bool clash = false;
+    for (const Candidate &k : cur.causes) clash = clash || candidates_conflict(c, k);
+    if (clash) continue;
+    const std::string why = excluded_by_data(c, cx.all);
+    if (why.empty()) {
+      cands.push_back(c);
+      continue;
+    }
+    CandidateOutcome co;  // reported, never screened
+    co.cand = c;
+    co.round = round;
+    co.why = why;
+    co.screen.start = cur.model;
+    excluded.push_back(co);
+  }
+  std::vector<CandidateOutcome> out(cands.size());
+  const auto t_screen = Clock::now();
+  const std::vector<CandidateScreen> screens =
+      screen_candidates(cands, cur.model, cur.spec, cx.all, cx.opt.misfit, cx.sc, cx.opt.threads);
+  for (size_t i = 0; i < cands.size(); ++i) {
+    out[i].cand = cands[i];
+    out[i].round = round;
+    out[i].screen = screens[i];
+  }
+  R.seconds_screen += since(t_screen);
+  const auto t_joint = Clock::now();
+  joint_fits(out, cur, cx, round == 0 ? cx.opt.joint_fits : cx.opt.joint_fits_next,
+             imposed.empty() ? std::string() : imposed[(size_t)round]);
+  R.seconds_joint += since(t_joint);
+  for (CandidateOutcome &co : out)
+    judge(co, cur, cx, round == 0 ? cx.opt.min_gain : cx.opt.min_gain_next);
+  for (CandidateOutcome &co : excluded) {
+    judge(co, cur, cx, 0.0);
+    out.push_back(co);
+  }
+  return out;
+}
+
+// What-if mode: the imposed word's joint fit with the lowest held-out error
+// (of its variants), eligible or not; nullptr if no fit succeeded.
+const CandidateOutcome *imposed_cause(const std::vector<CandidateOutcome> &round,
+                                      const std::string &name) {
+  const CandidateOutcome *pick = nullptr;
+  for (const CandidateOutcome &co : round)
+    if (co.cand.name == name && co.joint &&
+        (!pick || co.error_holdout_trimmed < pick->error_holdout_trimmed))
+      pick = &co;
+  return pick;
+}
+
+// Basin check of the first round: a candidate whose own term is
+// insignificant but whose fit is much better found a better RT minimum.
+const CandidateOutcome *better_basin(const std::vector<CandidateOutcome> &out, double base_error,
+                                     double min_z) {
+  const CandidateOutcome *better = nullptr;
+  for (const CandidateOutcome &co : out)
+    if (co.joint && co.amplitude_z < min_z && co.fit.error < 0.9 * base_error &&
+        (!better || co.fit.error < better->fit.error))
+      better = &co;
+  return better;
+}
+
+}  // namespace diag
+
+double excess_removed(double current, double candidate, double floor) {
+  const double excess = current - floor;
+  return excess > 0.0 ? (current - candidate) / excess : 0.0;
+}
+
+bool gain_suffices(double gain, double current, double candidate, double floor, double min_gain,
+                   const DiagnoseOptions &opt) {
+  return gain >= min_gain || (gain >= opt.min_gain_near_floor &&
+                              excess_removed(current, candidate, floor) >= opt.min_excess_removed);
+}
+
+bool is_candidate_name(const std::string &name) {
+  for (const Candidate &c : candidate_vocabulary())
+    if (c.name == name) return true;
+  return false;
+}
+
+// Fitted parameters a candidate adds (its extension's, or the artefact's).
+static size_t parameter_count(const Candidate &c) {
+  return c.extra.size() + (c.delay ? 1 : 0) + (c.offset ? 1 : 0);
+}
+
+// Stage 5's choice among the eligible: the lowest trimmed held-out error,
+// or, within `parsimony` of it, the candidate with the fewest parameters
+// (then the lower error). nullptr when none is eligible.
+const CandidateOutcome *select_cause(const std::vector<CandidateOutcome> &round,
+                                     double parsimony) {
+  const CandidateOutcome *best = nullptr;
+  for (const CandidateOutcome &co : round)
+    if (co.eligible && (!best || co.error_holdout_trimmed < best->error_holdout_trimmed)) best = &co;
+  if (!best) return nullptr;
+  const double within = (1.0 + parsimony) * best->error_holdout_trimmed;
+  const CandidateOutcome *pick = best;
+  for (const CandidateOutcome &co : round) {
+    if (!co.eligible || co.error_holdout_trimmed > within) continue;
+    const size_t n = parameter_count(co.cand), m = parameter_count(pick->cand);
+    if (n < m || (n == m && co.error_holdout_trimmed < pick->error_holdout_trimmed)) pick = &co;
+  }
+  return pick;
+}
+
+}  // namespace rtb

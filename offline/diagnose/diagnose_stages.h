@@ -1,0 +1,88 @@
+// diagnose_stages.h -- private to the diagnosis pipeline: the state its
+// stages share and the stage functions diagnose() (diagnose.cpp) calls in
+// order. Not part of the offline tool's interface (rtb_offline.h,
+// diagnose.h).
+//   cause_round.cpp     stages 3-5a: screen, joint fits, judge one round
+//   cause_revision.cpp  stages 5c-5d: refit an accepted cause, drop a stale one
+//   verdict_text.cpp    stage 6: the one-sentence verdict, per-record figures
+#ifndef RTB_OFFLINE_DIAGNOSE_STAGES_H
+#define RTB_OFFLINE_DIAGNOSE_STAGES_H
+
+#include <chrono>
+#include <string>
+#include <vector>
+
+#include "diagnose/diagnose.h"
+
+namespace rtb {
+namespace diag {
+
+using Clock = std::chrono::steady_clock;
+inline double since(Clock::time_point a) {
+  return std::chrono::duration<double>(Clock::now() - a).count();
+}
+
+// The model the next round starts from: its parameters, free set, causes and
+// figures (trimmed held-out error for selection, misfit for the BIC).
+struct Current {
+  ExtModel model;
+  ExtFitSpec spec;
+  std::vector<Candidate> causes;
+  double error_fit = 0, error_holdout = 0, error_holdout_trimmed = 0;
+  double J_trim = 0;  // trimmed fit misfit
+};
+
+// What every stage reads: the records, the selection figure's set-up, the
+// options, the data's scales and the noise floor once stage 2 has run.
+struct Context {
+  const std::vector<Record> &fit, &holdout, all;
+  const std::vector<Record> &sel;  // records of the selection figure
+  MisfitOptions sel_opt;
+  const DiagnoseOptions &opt;
+  DataScales sc;
+  std::vector<double> sigma;  // noise level per record of `all`
+  double floor_sel = 0.0;     // the noise floor's eq. (27) error on `sel`
+  bool clipped = false;       // stage 0 found a saturated force channel
+};
+
+// The figures of model m with `causes` (free set `spec`) on the context.
+Current make_current(const ExtModel &m, const ExtFitSpec &spec, const std::vector<Candidate> &causes,
+                     const Context &cx);
+
+// Stages 3-5a at the current model: the outcomes of every remaining
+// candidate of the vocabulary (screened, the best fitted jointly, judged).
+// Adds the screening and joint-fit wall time to R.
+std::vector<CandidateOutcome> one_round(const Current &cur, const Context &cx, int round,
+                                        DiagnoseResult &R);
+
+// Basin check of the first round: a candidate whose own term is
+// insignificant but whose fit is below 0.9x base_error; nullptr if none.
+const CandidateOutcome *better_basin(const std::vector<CandidateOutcome> &out, double base_error,
+                                     double min_z);
+
+// What-if mode: the imposed word's best joint fit, eligible or not.
+const CandidateOutcome *imposed_cause(const std::vector<CandidateOutcome> &round,
+                                      const std::string &name);
+
+// Stage 5c: refit the accepted cause's model from the STS start; true when
+// the refit replaced `fit`.
+bool refit_from_sts(const Current &cur, const Context &cx, ExtFitResult &fit);
+
+// Stage 5d: drop an earlier cause that no longer pays; its index, or -1.
+int drop_redundant(Current &cur, const Context &cx, DiagnoseResult &R);
+
+// The report entry of an accepted cause (sizes, gain over `before`).
+Cause make_cause(const CandidateOutcome &co, const Current &before);
+
+// Stage 6: the verdict sentence of a finished result.
+std::string verdict_text(const DiagnoseResult &R);
+
+// Stage 6: the signature of a residual above the floor (residual_signature.cpp).
+ResidualSignature residual_signature(const ExtModel &m, const std::vector<Record> &recs,
+                                     const std::vector<RecordResiduals> &where,
+                                     const MisfitOptions &opt);
+
+}  // namespace diag
+}  // namespace rtb
+
+#endif

@@ -1,0 +1,88 @@
+// verdict_text.cpp -- stage 6 of the diagnosis (diagnose.h): the verdict
+// sentence (causes, or `none` at the noise floor, or `unexplained` with the
+// residual's signature) and the per-record figures of the report.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "diagnose/diagnose_stages.h"
+
+namespace rtb {
+namespace diag {
+
+namespace {
+
+std::string pct(double e) {
+  char b[64];
+  std::snprintf(b, sizeof b, "%.2f%%", 100.0 * e);
+  return b;
+}
+
+}  // namespace
+
+std::string verdict_text(const DiagnoseResult &R) {
+  std::string v = R.imposed ? "imposed causes (what-if, not selected): " : "cause: ";
+  const std::string clipped = clipping_text(R.clipping, R.extended_records.size());
+  if (R.causes.empty() && !clipped.empty()) {
+    v += "unexplained (" + clipped + ")";
+  } else if (R.causes.empty() && R.cause == "unexplained") {
+    char b[200];
+    std::snprintf(b, sizeof b, "unexplained (residual %.1fx the noise floor of %s; no candidate removes it): ",
+                  R.baseline_error_holdout / std::max(R.floor.error_holdout, 1e-300),
+                  pct(R.floor.error_holdout).c_str());
+    v += b + R.signature.text;
+  } else if (R.causes.empty()) {
+    v += "none (the residual is at the noise floor of " + pct(R.floor.error_holdout) + ")";
+  } else {
+    for (size_t i = 0; i < R.causes.size(); ++i) v += (i ? " + " : "") + R.causes[i].description;
+  }
+  v += std::string("; ") + (R.has_holdout ? "holdout" : "fit") + " error " +
+       pct(R.baseline_error_holdout);
+  v += std::string(" -> ") + pct(R.extended_error_holdout);
+  char g[200];
+  std::snprintf(g, sizeof g, " (gain %.0f%%)", 100.0 * R.gain);
+  v += g;
+  if (!R.causes.empty() && !clipped.empty()) v += "; and " + clipped;
+  if (!R.causes.empty() && R.residual_above_floor) {
+    const double ratio = R.extended_error_holdout / std::max(R.floor.error_holdout, 1e-300);
+    // A low-passed force (real-data preprocessing) has no white noise left:
+    // then the floor says nothing and only the signature is reported.
+    if (ratio < 1000.0) std::snprintf(g, sizeof g, "; the remaining residual is %.1fx the noise floor: ", ratio);
+    else std::snprintf(g, sizeof g, "; remaining residual (no white noise in the force to set a floor, e.g. low-passed data): ");
+    v += g + R.signature.text;
+  }
+  return v;
+}
+
+}  // namespace diag
+
+std::vector<RecordFigures> record_figures(const ExtModel &m, const std::vector<Record> &fit,
+                                          const std::vector<Record> &holdout,
+                                          const MisfitOptions &opt) {
+  std::vector<RecordFigures> out;
+  ExtFitSpec none;
+  none.free.clear();
+  MisfitOptions all = opt;
+  all.fit_from = 0.0;
+  for (const std::vector<Record> *set : {&fit, &holdout})
+    for (const Record &rec : *set) {
+      RecordFigures f;
+      f.file = rec.path;
+      f.holdout = set == &holdout;
+      f.error = extended_error(m, {rec}, f.holdout ? all : opt);
+      Eigen::VectorXd F;
+      predict_extended(m, rec, opt.sim, none, F, nullptr);
+      double ss = 0.0, lo = INFINITY, hi = -INFINITY;
+      for (size_t i = 0; i < rec.F.size(); ++i) {
+        const double r = F[(Eigen::Index)i] - rec.F[i];
+        ss += r * r;
+        lo = std::min(lo, rec.F[i]);
+        hi = std::max(hi, rec.F[i]);
+      }
+      f.nrmse = hi > lo ? std::sqrt(ss / (double)rec.F.size()) / (hi - lo) : INFINITY;
+      out.push_back(f);
+    }
+  return out;
+}
+
+}  // namespace rtb
