@@ -70,6 +70,12 @@ TEST_P(DiagnoseHidden, NamesTheHiddenEffect) {
     return;
   }
   ASSERT_EQ(R.cause, effect) << R.verdict;
+  // The selection's figure (trimmed of isolated spikes) falls with every
+  // named cause; where the plain one rises (inertia: the truth's own spikes
+  // at ideal input corners), the verdict says so with both figures.
+  EXPECT_LT(R.extended_error_holdout_trimmed, R.baseline_error_holdout_trimmed) << R.verdict;
+  if (R.gain < 0.0)
+    EXPECT_NE(R.verdict.find("trimmed of isolated spikes"), std::string::npos) << R.verdict;
   const double floor = truth_error(sc);
   // Where the effect dominates the residual, the extension brings the
   // (trimmed: an inertia term spikes at ideal input corners) held-out error

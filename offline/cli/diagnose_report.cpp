@@ -134,6 +134,7 @@ nlohmann::ordered_json diagnosis_json(const DiagnoseResult &R, const std::vector
   j["extended"] = ext;
   j["gain"] = num(R.gain);
   j["baseline_error_holdout_trimmed"] = num(R.baseline_error_holdout_trimmed);
+  j["extended_error_holdout_trimmed"] = num(R.extended_error_holdout_trimmed);
   j["selection"] = "per round, the lowest trimmed held-out error among candidates with z >= 3, "
                    "delta BIC >= 10, trimmed gain >= 15% (10% for later causes) or, near the noise "
                    "floor, >= 5% removing half the excess over the floor, not contradicted by the data, "

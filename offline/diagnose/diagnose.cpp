@@ -157,6 +157,7 @@ void report(const Current &cur, const Context &cx, DiagnoseResult &R) {
   R.extended_spec = cur.spec;
   R.extended_error_fit = cur.error_fit;
   R.extended_error_holdout = cur.error_holdout;
+  R.extended_error_holdout_trimmed = cur.error_holdout_trimmed;
   R.extended_records = record_figures(R.extended, cx.fit, cx.holdout, opt.misfit);
   R.residual_above_floor = above_floor(cur, R, opt);
   if (R.residual_above_floor)

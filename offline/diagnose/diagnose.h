@@ -208,6 +208,10 @@ struct DiagnoseResult {
   ExtFitSpec extended_spec;    // its free parameters
   ExtFitResult extended_fit;   // its fit (sizes and uncertainty)
   double extended_error_fit = 0.0, extended_error_holdout = 0.0;
+  // Held-out error trimmed of isolated spikes (DiagnoseOptions::trim), the
+  // figure the selection uses; reported beside the plain one when they
+  // disagree on the sign of the gain.
+  double extended_error_holdout_trimmed = 0.0;
   std::vector<RecordFigures> extended_records;
   double gain = 0.0;
   std::string verdict;
