@@ -19,12 +19,6 @@ const Candidate &word(const std::string &name) {
   throw std::invalid_argument("no word " + name);
 }
 
-std::vector<Record> concat(const std::vector<Record> &a, const std::vector<Record> &b) {
-  std::vector<Record> all = a;
-  all.insert(all.end(), b.begin(), b.end());
-  return all;
-}
-
 // Stage 5d on the scenario's records with `causes` in the order accepted,
 // fitted jointly from `start`. Returns drop_redundant's index; `R` and `cur`
 // as the pipeline leaves them.
@@ -39,7 +33,7 @@ Revision revise(const Scenario &sc, const ExtModel &start, const std::vector<Can
   opt.quiet = true;
   MisfitOptions hold_opt = opt.misfit;
   hold_opt.fit_from = 0.0;
-  diag::Context cx{sc.fit, sc.holdout, concat(sc.fit, sc.holdout), sc.holdout, hold_opt, opt,
+  diag::Context cx{sc.fit, sc.holdout, diag::concat(sc.fit, sc.holdout), sc.holdout, hold_opt, opt,
                    data_scales(sc.fit), {}};
   ExtModel truth;
   truth.p = sc.truth.p;

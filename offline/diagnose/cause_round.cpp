@@ -60,9 +60,11 @@ void joint_fits(std::vector<CandidateOutcome> &out, const Current &cur, const Co
   for (size_t i = 0; i < out.size(); ++i)
     if (out[i].cand.name == imposed && std::find(order.begin(), order.end(), i) == order.end())
       order.push_back(i);
-  // The fits with a clearance or slack take several times longer (a search
-  // per step): start them first so that the threads finish together (slack
-  // on BM_Diagnose: its fit alone is most of the stage).
+  // The words screened by a short fit (clearance, slack, Mullins: no
+  // closed-form screen) are also the slowest to fit jointly, clearance and
+  // slack several times over (a search per step): start them first so that
+  // the threads finish together (slack on BM_Diagnose: its fit alone is most
+  // of the stage).
   std::stable_partition(order.begin(), order.end(), [&](size_t i) {
     return out[i].cand.screen == ScreenMethod::short_fit;
   });

@@ -13,17 +13,12 @@
 namespace rtb {
 
 using diag::Clock;
+using diag::concat;
 using diag::Context;
 using diag::Current;
 using diag::since;
 
 namespace {
-
-std::vector<Record> concat(const std::vector<Record> &a, const std::vector<Record> &b) {
-  std::vector<Record> all = a;
-  all.insert(all.end(), b.begin(), b.end());
-  return all;
-}
 
 // Stage 1: plain RT from the STS start (section 5.4). A device that slides
 // can send that fit to a viscous basin (the friction damper's dataset-3 sines:

@@ -34,6 +34,14 @@ struct Current {
 
 // What every stage reads: the records, the selection figure's set-up, the
 // options, the data's scales and the noise floor once stage 2 has run.
+// The records of `a` followed by those of `b` (fit then held-out: the
+// screening and selection records, issue #10 item 3).
+inline std::vector<Record> concat(const std::vector<Record> &a, const std::vector<Record> &b) {
+  std::vector<Record> all = a;
+  all.insert(all.end(), b.begin(), b.end());
+  return all;
+}
+
 struct Context {
   const std::vector<Record> &fit, &holdout, all;
   const std::vector<Record> &sel;  // records of the selection figure

@@ -17,29 +17,77 @@
 
 #include "rtb_scalar.h"
 
-/* LU of J by the Thomas algorithm: reciprocal pivots and multipliers. Column
- * k of h K D carries D[k]. Storing them makes a second solve with the same
- * matrix cost no division. */
+/* LU of J (Thomas algorithm) with reciprocal pivots and the forward
+ * substitution's multipliers premultiplied, so that a solve's two
+ * recurrences are one multiply and one subtract per row and a second solve
+ * with the same matrix costs no division. Column k of h K D carries D[k]. */
 typedef struct rtb_newton_lu {
   int n;
   rtb_real inv[RTB_MAX_CELLS];  /* 1 / pivot k */
-  rtb_real lo[RTB_MAX_CELLS];   /* sub-diagonal J[k][k-1] = -h Kr D[k-1] */
+  rtb_real g[RTB_MAX_CELLS];    /* J[k][k-1] / pivot k */
   rtb_real w[RTB_MAX_CELLS];    /* J[k-1][k] / pivot k-1 */
 } rtb_newton_lu;
 
-/* hK0 = h (Kpa + Kr), hKr = h Kr. Returns 0, or -1 on a zero pivot. */
+/* Continuant bounds (rtb_newton_factor): matrix entries up to ENTRY_MAX
+ * (so a product of two, c_k, is at most its square) and continuants
+ * rescaled by 1/RESCALE once above RESCALE keep every product of a row below
+ * the scalar's overflow (double: ~1e251, float: ~2e31). */
+#ifdef RTB_SINGLE
+#define RTB_NEWTON_ENTRY_MAX 1e6f
+#define RTB_NEWTON_RESCALE 18446744073709551616.0f   /* 2^64: rescaling is exact */
+#else
+#define RTB_NEWTON_ENTRY_MAX 1e50
+#define RTB_NEWTON_RESCALE 0x1p500                   /* 2^500 ~ 3e150 */
+#endif
+
+/* hK0 = h (Kpa + Kr), hKr = h Kr. Returns 0, or -1 on a zero pivot.
+ * Why the continuant (session 10, 8-10% of a default step, docs/benchmarks.md):
+ * the pivots obey piv_k = a_k - c_k / piv_k-1, a chain of dependent
+ * divisions. Their
+ * products, the leading principal minors p_k = a_k p_k-1 - c_k p_k-2, need
+ * only a multiply and a subtract in the chain; each pivot is then the ratio
+ * p_k / p_k-1, and those divisions are independent of one another. J is a
+ * column diagonally dominant M-matrix (column sums 1, 1 + h Kpa D_0, 1 + h Kr
+ * D_n-1), so in exact arithmetic every pivot is >= 1 and |p_k| only grows:
+ * it is rescaled before it can overflow. (Next to steep cells the subtraction
+ * cancels in either form; as before, only a zero pivot is rejected and the
+ * line search judges the step: measured on BM_RandomConfigs, 4.36% of steps
+ * end unconverged against 4.26% with the division chain, within the spread
+ * of rounding-level changes on those configurations.) Entries beyond RTB_NEWTON_ENTRY_MAX (a near-rigid
+ * dashpot) take the division chain, whose products stay bounded. */
 static inline int rtb_newton_factor(int n, rtb_real hK0, rtb_real hKr, const rtb_real *D,
                                     rtb_newton_lu *F) {
   F->n = n;
+  rtb_real dmax = 0.0;
+  for (int k = 0; k < n; ++k) dmax = D[k] > dmax ? D[k] : dmax;
+  const rtb_real kmax = hK0 > 2.0 * hKr ? hK0 : 2.0 * hKr;
   rtb_real piv = 1.0 + hK0 * D[0];
   if (!(piv != 0.0)) return -1;
   F->inv[0] = 1.0 / piv;
+  if (kmax * dmax <= RTB_NEWTON_ENTRY_MAX) {
+    rtb_real pm2 = 1.0, pm1 = piv;
+    for (int k = 1; k < n; ++k) {
+      const rtb_real lo = -hKr * D[k - 1], up = -hKr * D[k];
+      rtb_real p = (1.0 + 2.0 * hKr * D[k]) * pm1 - (lo * up) * pm2;
+      if (!(p != 0.0)) return -1;
+      F->inv[k] = pm1 / p;
+      if (fabs(p) > RTB_NEWTON_RESCALE) { p /= RTB_NEWTON_RESCALE; pm1 /= RTB_NEWTON_RESCALE; }
+      pm2 = pm1;
+      pm1 = p;
+    }
+    for (int k = 1; k < n; ++k) {
+      F->g[k] = -hKr * D[k - 1] * F->inv[k];
+      F->w[k] = -hKr * D[k] * F->inv[k - 1];
+    }
+    return 0;
+  }
   for (int k = 1; k < n; ++k) {
-    F->lo[k] = -hKr * D[k - 1];
+    const rtb_real lo = -hKr * D[k - 1];
     F->w[k] = -hKr * D[k] * F->inv[k - 1];
-    piv = 1.0 + 2.0 * hKr * D[k] - F->lo[k] * F->w[k];
+    piv = 1.0 + 2.0 * hKr * D[k] - lo * F->w[k];
     if (!(piv != 0.0)) return -1;
     F->inv[k] = 1.0 / piv;
+    F->g[k] = lo * F->inv[k];
   }
   return 0;
 }
@@ -48,8 +96,10 @@ static inline int rtb_newton_factor(int n, rtb_real hK0, rtb_real hKr, const rtb
 static inline void rtb_newton_substitute(const rtb_newton_lu *F, rtb_real sign, const rtb_real *b,
                                          rtb_real *x) {
   const int n = F->n;
-  x[0] = sign * b[0] * F->inv[0];
-  for (int k = 1; k < n; ++k) x[k] = (sign * b[k] - F->lo[k] * x[k - 1]) * F->inv[k];
+  rtb_real sb[RTB_MAX_CELLS];
+  for (int k = 0; k < n; ++k) sb[k] = sign * b[k] * F->inv[k];
+  x[0] = sb[0];
+  for (int k = 1; k < n; ++k) x[k] = sb[k] - F->g[k] * x[k - 1];
   for (int k = n - 2; k >= 0; --k) x[k] -= F->w[k + 1] * x[k + 1];
 }
 
