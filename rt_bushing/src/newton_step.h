@@ -96,10 +96,9 @@ static inline int rtb_newton_factor(int n, rtb_real hK0, rtb_real hKr, const rtb
 static inline void rtb_newton_substitute(const rtb_newton_lu *F, rtb_real sign, const rtb_real *b,
                                          rtb_real *x) {
   const int n = F->n;
-  rtb_real sb[RTB_MAX_CELLS];
-  for (int k = 0; k < n; ++k) sb[k] = sign * b[k] * F->inv[k];
-  x[0] = sb[0];
-  for (int k = 1; k < n; ++k) x[k] = sb[k] - F->g[k] * x[k - 1];
+  /* sign b_k / pivot_k is off the chain: one multiply-subtract per row in it */
+  x[0] = sign * b[0] * F->inv[0];
+  for (int k = 1; k < n; ++k) x[k] = sign * b[k] * F->inv[k] - F->g[k] * x[k - 1];
   for (int k = n - 2; k >= 0; --k) x[k] -= F->w[k + 1] * x[k + 1];
 }
 
@@ -107,6 +106,7 @@ static inline void rtb_newton_substitute(const rtb_newton_lu *F, rtb_real sign, 
  * first and last rows are peeled so the interior loop has no branch. */
 static inline void rtb_newton_hK_apply(int n, rtb_real hK0, rtb_real hKr, const rtb_real *u,
                                        rtb_real *out) {
+  if (n < 1) return; /* u[0] would be read unwritten (make embedded's GCC says so) */
   out[0] = hK0 * u[0];
   if (n > 1) out[0] -= hKr * u[1];
   for (int k = 1; k < n - 1; ++k) out[k] = 2.0 * hKr * u[k] - hKr * (u[k - 1] + u[k + 1]);
