@@ -1,6 +1,6 @@
 // newton_step_test.cpp -- the stage Newton matrix's LU (rt_bushing/src/
-// newton_step.h): the continuant factorization, its rescaling and its
-// division-chain fallback solve J x = b to rounding, checked by the
+// newton_step.h): the twisted continuant factorization, its rescaling and
+// its division-chain fallback solve J x = b to rounding, checked by the
 // componentwise backward error against J itself (eq. (2)'s chain stiffness:
 // J = I + h K D), over the range of slopes the stage solver meets.
 #include <gtest/gtest.h>
@@ -72,7 +72,8 @@ TEST(NewtonLU, FallsBackToTheDivisionChainForNearRigidCells) {
 }
 
 TEST(NewtonLU, MatchesTheDivisionChainPivots) {
-  // The continuant's pivot ratios equal the Thomas pivots to rounding.
+  // The continuant's pivot ratios equal the division chain's pivots to
+  // rounding: downwards above the meeting row, upwards below it.
   std::mt19937_64 g(14);
   const int n = 15;
   const double hK0 = 0.9, hKr = 0.4;
@@ -80,9 +81,15 @@ TEST(NewtonLU, MatchesTheDivisionChainPivots) {
     const std::vector<double> D = slopes(g, n, -4.0, 4.0);
     rtb_newton_lu lu;
     ASSERT_EQ(rtb_newton_factor(n, hK0, hKr, D.data(), &lu), 0);
+    ASSERT_EQ(lu.m, n / 2);
     double piv = 1.0 + hK0 * D[0];
-    for (int k = 1; k < n; ++k) {
+    for (int k = 1; k < lu.m; ++k) {
       piv = 1.0 + 2.0 * hKr * D[k] - (hKr * D[k - 1]) * (hKr * D[k]) / piv;
+      EXPECT_NEAR(lu.inv[k] * piv, 1.0, 1e-13) << "row " << k;
+    }
+    piv = 1.0 + 2.0 * hKr * D[n - 1];
+    for (int k = n - 2; k > lu.m; --k) {
+      piv = 1.0 + 2.0 * hKr * D[k] - (hKr * D[k + 1]) * (hKr * D[k]) / piv;
       EXPECT_NEAR(lu.inv[k] * piv, 1.0, 1e-13) << "row " << k;
     }
   }

@@ -17,15 +17,24 @@
 
 #include "rtb_scalar.h"
 
-/* LU of J (Thomas algorithm) with reciprocal pivots and the forward
- * substitution's multipliers premultiplied, so that a solve's two
- * recurrences are one multiply and one subtract per row and a second solve
- * with the same matrix costs no division. Column k of h K D carries D[k]. */
+/* Twisted LU of J: the Thomas algorithm run from both ends at once, rows
+ * above m = n/2 eliminated downwards, rows below upwards, meeting at row m.
+ * A Newton iteration is a chain of dependent steps (factor, solve, sweep,
+ * solve again), and each recurrence of a solve is a chain through its rows:
+ * from both ends that chain is n/2 rows long instead of n, two independent
+ * chains that the core runs side by side (measured on one dependent solve of
+ * 15 rows: 58 -> 36 ns; docs/benchmarks.md, session 10). The multipliers are
+ * premultiplied by the reciprocal pivots, so every row of a solve is one
+ * multiply and one subtract in its chain, and a second solve with the same
+ * factors costs no division. Column k of h K D carries D[k]. */
 typedef struct rtb_newton_lu {
-  int n;
-  rtb_real inv[RTB_MAX_CELLS];  /* 1 / pivot k */
-  rtb_real g[RTB_MAX_CELLS];    /* J[k][k-1] / pivot k */
-  rtb_real w[RTB_MAX_CELLS];    /* J[k-1][k] / pivot k-1 */
+  int n, m;                     /* size; the meeting row, n / 2 */
+  rtb_real inv[RTB_MAX_CELLS];  /* 1 / pivot k of its own end (m: the meeting row's) */
+  rtb_real g[RTB_MAX_CELLS];    /* elimination multiplier towards m: J[k][k-1] /
+                                   pivot k-1 for k <= m, J[k][k+1] / pivot k+1 for k > m */
+  rtb_real w[RTB_MAX_CELLS];    /* back substitution away from m: J[k][k+1] / pivot k
+                                   for k < m, J[k][k-1] / pivot k for k > m */
+  rtb_real gm;                  /* row m's other multiplier, J[m][m+1] / pivot m+1 */
 } rtb_newton_lu;
 
 /* Continuant bounds (rtb_newton_factor): matrix entries up to ENTRY_MAX
@@ -40,66 +49,121 @@ typedef struct rtb_newton_lu {
 #define RTB_NEWTON_RESCALE 0x1p500                   /* 2^500 ~ 3e150 */
 #endif
 
-/* hK0 = h (Kpa + Kr), hKr = h Kr. Returns 0, or -1 on a zero pivot.
- * Why the continuant (session 10, 8-10% of a default step, docs/benchmarks.md):
- * the pivots obey piv_k = a_k - c_k / piv_k-1, a chain of dependent
- * divisions. Their
- * products, the leading principal minors p_k = a_k p_k-1 - c_k p_k-2, need
- * only a multiply and a subtract in the chain; each pivot is then the ratio
- * p_k / p_k-1, and those divisions are independent of one another. J is a
- * column diagonally dominant M-matrix (column sums 1, 1 + h Kpa D_0, 1 + h Kr
- * D_n-1), so in exact arithmetic every pivot is >= 1 and |p_k| only grows:
- * it is rescaled before it can overflow. (Next to steep cells the subtraction
- * cancels in either form; as before, only a zero pivot is rejected and the
- * line search judges the step: measured on BM_RandomConfigs, 4.36% of steps
- * end unconverged against 4.26% with the division chain, within the spread
- * of rounding-level changes on those configurations.) Entries beyond RTB_NEWTON_ENTRY_MAX (a near-rigid
- * dashpot) take the division chain, whose products stay bounded. */
-static inline int rtb_newton_factor(int n, rtb_real hK0, rtb_real hKr, const rtb_real *D,
-                                    rtb_newton_lu *F) {
-  F->n = n;
-  rtb_real dmax = 0.0;
-  for (int k = 0; k < n; ++k) dmax = D[k] > dmax ? D[k] : dmax;
-  const rtb_real kmax = hK0 > 2.0 * hKr ? hK0 : 2.0 * hKr;
-  rtb_real piv = 1.0 + hK0 * D[0];
-  if (!(piv != 0.0)) return -1;
-  F->inv[0] = 1.0 / piv;
-  if (kmax * dmax <= RTB_NEWTON_ENTRY_MAX) {
-    rtb_real pm2 = 1.0, pm1 = piv;
-    for (int k = 1; k < n; ++k) {
-      const rtb_real lo = -hKr * D[k - 1], up = -hKr * D[k];
-      rtb_real p = (1.0 + 2.0 * hKr * D[k]) * pm1 - (lo * up) * pm2;
-      if (!(p != 0.0)) return -1;
-      F->inv[k] = pm1 / p;
-      if (fabs(p) > RTB_NEWTON_RESCALE) { p /= RTB_NEWTON_RESCALE; pm1 /= RTB_NEWTON_RESCALE; }
-      pm2 = pm1;
-      pm1 = p;
-    }
-    for (int k = 1; k < n; ++k) {
-      F->g[k] = -hKr * D[k - 1] * F->inv[k];
-      F->w[k] = -hKr * D[k] * F->inv[k - 1];
-    }
-    return 0;
-  }
-  for (int k = 1; k < n; ++k) {
-    const rtb_real lo = -hKr * D[k - 1];
-    F->w[k] = -hKr * D[k] * F->inv[k - 1];
-    piv = 1.0 + 2.0 * hKr * D[k] - lo * F->w[k];
-    if (!(piv != 0.0)) return -1;
-    F->inv[k] = 1.0 / piv;
-    F->g[k] = lo * F->inv[k];
-  }
+/* One row of an end's elimination: the continuant p = a p1 - c p2 of the
+ * pivots so far (p1 the last, p2 the one before), the new reciprocal pivot
+ * p1 / p into *inv, and (p1, p2) advanced. Returns -1 on a zero pivot. */
+static inline int rtb_newton_continuant_row(rtb_real a, rtb_real c, rtb_real *p1, rtb_real *p2,
+                                            rtb_real *inv) {
+  rtb_real p = a * *p1 - c * *p2;
+  if (!(p != 0.0)) return -1;
+  *inv = *p1 / p;
+  if (fabs(p) > RTB_NEWTON_RESCALE) { p /= RTB_NEWTON_RESCALE; *p1 /= RTB_NEWTON_RESCALE; }
+  *p2 = *p1;
+  *p1 = p;
   return 0;
 }
 
-/* x = J^-1 (sign b); x may not alias b. */
+/* hK0 = h (Kpa + Kr), hKr = h Kr. Returns 0, or -1 on a zero pivot.
+ * Row k: diagonal a_k = 1 + h K_kk D_k, off-diagonals J[k][k-1] = -e_k-1 and
+ * J[k][k+1] = -e_k+1 with e_k = h Kr D_k, so eliminating the pair (k, k+1)
+ * from either end subtracts c = e_k e_k+1 / (the neighbour's pivot).
+ * Why continuants (session 10): the pivots obey piv = a - c / piv_prev, a
+ * chain of dependent divisions; their products p = a p_prev - c p_prevprev
+ * (the minors) need a multiply and a subtract in the chain, and each
+ * reciprocal pivot p_prev / p is a division off it. J is a column diagonally
+ * dominant M-matrix (column sums 1, 1 + h Kpa D_0, 1 + h Kr D_n-1), so in
+ * exact arithmetic every pivot is >= 1 from either end and |p| only grows:
+ * it is rescaled before it can overflow. Next to steep cells the
+ * subtraction cancels in either form; as with the division chain, only a
+ * zero pivot is rejected and the line search judges the step (requiring
+ * positive pivots doubled BM_RandomConfigs' unconverged steps). Entries
+ * beyond RTB_NEWTON_ENTRY_MAX (a near-rigid dashpot) take the division
+ * chain, whose products stay bounded. */
+static inline int rtb_newton_factor(int n, rtb_real hK0, rtb_real hKr, const rtb_real *D,
+                                    rtb_newton_lu *F) {
+  const int m = n / 2;
+  F->n = n;
+  F->m = m;
+  rtb_real dmax = 0.0;
+  for (int k = 0; k < n; ++k) dmax = D[k] > dmax ? D[k] : dmax;
+  const rtb_real kmax = hK0 > 2.0 * hKr ? hK0 : 2.0 * hKr;
+#define RTB_NEWTON_A(k) (1.0 + ((k) == 0 ? hK0 : 2.0 * hKr) * D[k])
+#define RTB_NEWTON_E(k) (hKr * D[k])
+  if (m > 0) F->inv[0] = 1.0 / RTB_NEWTON_A(0);
+  if (n - 1 > m) F->inv[n - 1] = 1.0 / RTB_NEWTON_A(n - 1);
+  if (kmax * dmax <= RTB_NEWTON_ENTRY_MAX) {
+    rtb_real t1 = m > 0 ? RTB_NEWTON_A(0) : 1.0, t2 = 1.0;
+    rtb_real b1 = RTB_NEWTON_A(n - 1), b2 = 1.0;
+    for (int kt = 1, kb = n - 2; kt < m || kb > m; ++kt, --kb) { /* both ends side by side */
+      if (kt < m && rtb_newton_continuant_row(RTB_NEWTON_A(kt), RTB_NEWTON_E(kt - 1) * RTB_NEWTON_E(kt),
+                                              &t1, &t2, &F->inv[kt]) != 0)
+        return -1;
+      if (kb > m && rtb_newton_continuant_row(RTB_NEWTON_A(kb), RTB_NEWTON_E(kb) * RTB_NEWTON_E(kb + 1),
+                                              &b1, &b2, &F->inv[kb]) != 0)
+        return -1;
+    }
+  } else {
+    for (int k = 1; k < m; ++k) {
+      const rtb_real piv = RTB_NEWTON_A(k) - RTB_NEWTON_E(k - 1) * (RTB_NEWTON_E(k) * F->inv[k - 1]);
+      if (!(piv != 0.0)) return -1;
+      F->inv[k] = 1.0 / piv;
+    }
+    for (int k = n - 2; k > m; --k) {
+      const rtb_real piv = RTB_NEWTON_A(k) - RTB_NEWTON_E(k + 1) * (RTB_NEWTON_E(k) * F->inv[k + 1]);
+      if (!(piv != 0.0)) return -1;
+      F->inv[k] = 1.0 / piv;
+    }
+  }
+  /* The meeting row: both neighbours eliminated into it. */
+  rtb_real piv = RTB_NEWTON_A(m);
+  F->g[m] = 0.0;
+  F->gm = 0.0;
+  if (m > 0) {
+    F->g[m] = -RTB_NEWTON_E(m - 1) * F->inv[m - 1];
+    piv += F->g[m] * RTB_NEWTON_E(m);
+  }
+  if (n - 1 > m) {
+    F->gm = -RTB_NEWTON_E(m + 1) * F->inv[m + 1];
+    piv += F->gm * RTB_NEWTON_E(m);
+  }
+  if (!(piv != 0.0)) return -1;
+  F->inv[m] = 1.0 / piv;
+  for (int k = 1; k < m; ++k) F->g[k] = -RTB_NEWTON_E(k - 1) * F->inv[k - 1];
+  for (int k = 0; k < m; ++k) F->w[k] = -RTB_NEWTON_E(k + 1) * F->inv[k];
+  for (int k = m + 1; k < n - 1; ++k) F->g[k] = -RTB_NEWTON_E(k + 1) * F->inv[k + 1];
+  for (int k = m + 1; k < n; ++k) F->w[k] = -RTB_NEWTON_E(k - 1) * F->inv[k];
+#undef RTB_NEWTON_A
+#undef RTB_NEWTON_E
+  return 0;
+}
+
+/* x = J^-1 (sign b); x may not alias b. Towards m: y_k = sign b_k - g_k
+ * y_k-1 from the top, likewise from the bottom; away from m: x_k = y_k /
+ * pivot_k - w_k x_k+-1. The two ends' chains are interleaved in one loop. */
 static inline void rtb_newton_substitute(const rtb_newton_lu *F, rtb_real sign, const rtb_real *b,
                                          rtb_real *x) {
-  const int n = F->n;
-  /* sign b_k / pivot_k is off the chain: one multiply-subtract per row in it */
-  x[0] = sign * b[0] * F->inv[0];
-  for (int k = 1; k < n; ++k) x[k] = sign * b[k] * F->inv[k] - F->g[k] * x[k - 1];
-  for (int k = n - 2; k >= 0; --k) x[k] -= F->w[k + 1] * x[k + 1];
+  const int n = F->n, m = F->m;
+  rtb_real yt = 0.0, yb = 0.0;
+  if (m > 0) x[0] = yt = sign * b[0];
+  if (n - 1 > m) x[n - 1] = yb = sign * b[n - 1];
+  int kt = 1, kb = n - 2;
+  for (; kt < m && kb > m; ++kt, --kb) {
+    x[kt] = yt = sign * b[kt] - F->g[kt] * yt;
+    x[kb] = yb = sign * b[kb] - F->g[kb] * yb;
+  }
+  for (; kt < m; ++kt) x[kt] = yt = sign * b[kt] - F->g[kt] * yt;
+  for (; kb > m; --kb) x[kb] = yb = sign * b[kb] - F->g[kb] * yb;
+  const rtb_real xm = (sign * b[m] - F->g[m] * yt - F->gm * yb) * F->inv[m];
+  x[m] = xm;
+  rtb_real xt = xm, xb = xm;
+  kt = m - 1;
+  kb = m + 1;
+  for (; kt >= 0 && kb < n; --kt, ++kb) {
+    x[kt] = xt = x[kt] * F->inv[kt] - F->w[kt] * xt;
+    x[kb] = xb = x[kb] * F->inv[kb] - F->w[kb] * xb;
+  }
+  for (; kt >= 0; --kt) x[kt] = xt = x[kt] * F->inv[kt] - F->w[kt] * xt;
+  for (; kb < n; ++kb) x[kb] = xb = x[kb] * F->inv[kb] - F->w[kb] * xb;
 }
 
 /* out = h K u (the chain stiffness of eq. (2) times h); returns nothing. The
