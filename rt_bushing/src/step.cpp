@@ -327,30 +327,33 @@ extern "C" rtb_status rtb_step_core(const rtb_state *s, const rtb_params *p,
   const rtb_real dF = (follows ? r.dF : 0.0) + p->mass / (dt * dt);
   if (!isfinite(F) || !isfinite(dF)) return RTB_ERR_OVERFLOW;
 
+  /* Commit: every check is above, so `out` (which may be `s`) is written
+   * only on success. Field by field rather than through a whole copy of the
+   * state (~1 KB twice per step, 3% of a default step): a trial gets the
+   * rest of *s first. v_prev takes s->v before v is overwritten. */
   const int n = p->cells;
-  rtb_state next = *s;
-  next.x = x;
-  next.xb = xb;
-  next.force = F;
-  next.time = s->time + dt;
-  memcpy(next.y, r.y, sizeof(rtb_real) * n);
-  if (p->model == RTB_MODEL_RT) {
-    const rtb_stage &last = r.st[rtb_integrator_stages(p) - 1];
-    memcpy(next.v_prev, s->v, sizeof(rtb_real) * n);
-    memcpy(next.v, last.v, sizeof(rtb_real) * n);
-    next.dt_prev = dt;
-  }
-  next.z_maxwell = r.z;
-  memcpy(next.z_spec, r.z_spec, sizeof(rtb_real) * (size_t)sp.M);
-  next.contact = contact;
-  next.xb_max = fmax(s->xb_max, fabs(xb));
-  next.vx = vx;
-  next.steps = s->steps + 1;
-  next.last_iterations = r.iterations;
+  const rtb_stage &last = r.st[p->model == RTB_MODEL_RT ? rtb_integrator_stages(p) - 1 : 0];
   for (int k = 0; k < n; ++k)
-    if (!isfinite(next.y[k]) || !isfinite(next.v[k])) return RTB_ERR_OVERFLOW;
-
-  *out = next;
+    if (!isfinite(r.y[k]) || (p->model == RTB_MODEL_RT && !isfinite(last.v[k])))
+      return RTB_ERR_OVERFLOW;
+  if (out != s) *out = *s;
+  out->x = x;
+  out->xb = xb;
+  out->force = F;
+  out->time = s->time + dt;
+  memcpy(out->y, r.y, sizeof(rtb_real) * n);
+  if (p->model == RTB_MODEL_RT) {
+    memcpy(out->v_prev, s->v, sizeof(rtb_real) * n);
+    memcpy(out->v, last.v, sizeof(rtb_real) * n);
+    out->dt_prev = dt;
+  }
+  out->z_maxwell = r.z;
+  memcpy(out->z_spec, r.z_spec, sizeof(rtb_real) * (size_t)sp.M);
+  out->contact = contact;
+  out->xb_max = fmax(s->xb_max, fabs(xb));
+  out->vx = vx;
+  out->steps = s->steps + 1;
+  out->last_iterations = r.iterations;
   if (force) *force = F;
   if (dforce_dx) *dforce_dx = dF;
   if (stages && p->model == RTB_MODEL_RT) memcpy(stages, r.st, sizeof r.st);
