@@ -13,7 +13,8 @@
  *                    s = 100 s/mm, 9 softening spring, 10 all of 1-9),
  *                    input: 10 Hz 1 mm sine + 10 um noise at 1 kHz, 20000 steps.
  *   median_ns, worst_replay_ns, not_converged, errors
- * BM_RandomConfigs   random valid configurations (RT 75% / STS, N 1..32, both
+ * BM_RandomConfigs/sets:S/budget:W   rtb_settings.max_work = W;
+ *                    random valid configurations (RT 75% / STS, N 1..32, both
  *                    integrators, random extensions incl. smoothing and
  *                    clearance, log-uniform parameters over several decades),
  *                    each driven by smooth, random-walk, jump and any-scale
@@ -47,15 +48,15 @@ long repeat_count() {
 }
 
 /* One step from a saved state, timed (ns); the state is advanced once. */
-double timed_step(rtb_state *s, const rtb_params &p, double x, double dt, long repeat,
-                  rtb_status *st) {
+double timed_step(rtb_state *s, const rtb_params &p, const rtb_settings *set, double x, double dt,
+                  long repeat, rtb_status *st) {
   const rtb_state before = *s;
   double best = INFINITY;
   for (long r = 0; r < repeat; ++r) {
     rtb_state t = before;
     double F;
     const auto a = Clock::now();
-    const rtb_status q = rtb_step(&t, &p, nullptr, x, dt, &F);
+    const rtb_status q = rtb_step(&t, &p, set, x, dt, &F);
     const auto b = Clock::now();
     benchmark::DoNotOptimize(F);
     best = std::min(best, std::chrono::duration<double, std::nano>(b - a).count());
@@ -69,6 +70,7 @@ struct Candidate {
   rtb_params p;
   rtb_state before;
   double x, dt;
+  rtb_settings set;
 };
 
 double replay_median(const Candidate &c) {
@@ -77,7 +79,7 @@ double replay_median(const Candidate &c) {
     rtb_state s = c.before;
     double F;
     const auto a = Clock::now();
-    const rtb_status st = rtb_step(&s, &c.p, nullptr, c.x, c.dt, &F);
+    const rtb_status st = rtb_step(&s, &c.p, &c.set, c.x, c.dt, &F);
     const auto b = Clock::now();
     benchmark::DoNotOptimize(st);
     benchmark::DoNotOptimize(F);
@@ -137,9 +139,10 @@ void BM_Extension(benchmark::State &state) {
     top.clear();
     nc = errors = 0;
     for (long i = warm; i < warm + n; ++i) {
-      Candidate c{0.0, p, s, xs[i], 1e-3};
+      Candidate c{0.0, p, s, xs[i], 1e-3, {}};
+      rtb_settings_default(&c.set);
       rtb_status st;
-      c.ns = timed_step(&s, p, xs[i], 1e-3, repeat, &st);
+      c.ns = timed_step(&s, p, &c.set, xs[i], 1e-3, repeat, &st);
       nc += st == RTB_NOT_CONVERGED;
       errors += st < 0;
       lat.push_back(c.ns);
@@ -158,6 +161,9 @@ void BM_Extension(benchmark::State &state) {
 
 void BM_RandomConfigs(benchmark::State &state) {
   const int sets = static_cast<int>(state.range(0)), steps = 300;
+  rtb_settings budget;
+  rtb_settings_default(&budget);
+  budget.max_work = static_cast<int32_t>(state.range(1));
   const long repeat = repeat_count();
   std::vector<Candidate> top;
   long total = 0, nc = 0, errors = 0;
@@ -179,9 +185,9 @@ void BM_RandomConfigs(benchmark::State &state) {
         else if (kind < 0.7) x += amp * (2.0 * u01(g) - 1.0) * 0.1;
         else if (kind < 0.9) x = amp * (2.0 * u01(g) - 1.0);
         else x = (u01(g) < 0.5 ? -1.0 : 1.0) * rtb_test::log_uniform(g, 1e-9, 1e3);
-        Candidate c{0.0, p, s, x, dt};
+        Candidate c{0.0, p, s, x, dt, budget};
         rtb_status st;
-        c.ns = timed_step(&s, p, x, dt, repeat, &st);
+        c.ns = timed_step(&s, p, &budget, x, dt, repeat, &st);
         ++total;
         nc += st == RTB_NOT_CONVERGED;
         errors += st < 0;
@@ -212,5 +218,9 @@ void BM_RandomConfigs(benchmark::State &state) {
 
 BENCHMARK(BM_Extension)->DenseRange(0, 10)->ArgName("ext")->Iterations(1)
     ->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_RandomConfigs)->Arg(300)->ArgName("sets")->Iterations(1)
+// The default budget (RTB_STEP_WORK) and tighter ones set at run time
+// (rtb_settings.max_work): the bound a host buys against the share of
+// unconverged steps on these (extreme) configurations.
+BENCHMARK(BM_RandomConfigs)->Args({300, RTB_STEP_WORK})->Args({300, 1024})->Args({300, 512})
+    ->Args({300, 256})->ArgNames({"sets", "budget"})->Iterations(1)
     ->Unit(benchmark::kMillisecond);

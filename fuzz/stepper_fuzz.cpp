@@ -83,6 +83,8 @@ const rtb_settings *make_settings(Bytes &in, rtb_settings *set) {
   set->tol = in.log_uniform(1e-17, 1e-1);
   set->max_iter = (int32_t)(in.u8() % 110);
   set->max_backtrack = (int32_t)(in.u8() % 70);
+  const uint8_t w = in.u8();  // mostly small budgets, sometimes 0 (rejected)
+  set->max_work = w < 200 ? (int32_t)w * 8 : (int32_t)(RTB_STEP_WORK + (w - 200) * 1024);
   return set;
 }
 

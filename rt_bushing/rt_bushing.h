@@ -65,12 +65,13 @@ extern "C" {
 /* Types                                                               */
 /* ------------------------------------------------------------------ */
 
-#define RTB_ABI_VERSION 4     /* bumped on any layout change of the structs
+#define RTB_ABI_VERSION 5     /* bumped on any layout change of the structs
                                  (2: `smoothing`, `sat_force`, `sat_disp` took reserved[0..2];
                                   3: slack, backlash_held, fric_asym, spec_* and the
                                   spectrum memory z_spec in rtb_state; fixed-width
                                   integer fields, struct sizes in rtb_info;
-                                  4: rtb_step_info.work, the spent work budget) */
+                                  4: rtb_step_info.work, the spent work budget;
+                                  5: rtb_settings.max_work, the budget at run time) */
 #define RTB_MAX_CELLS 32      /* capacity of rtb_state; N = 1 .. RTB_MAX_CELLS */
 #define RTB_DEFAULT_CELLS 15  /* the paper's choice (section 3.4) */
 #define RTB_N_RESERVED 6
@@ -196,22 +197,25 @@ typedef struct rtb_params {
 } rtb_params;
 
 /* Hard work bound per step (issue #11). Every rtb_step / rtb_evaluate spends
- * at most RTB_STEP_WORK units of dashpot-law evaluations, whatever N, the
+ * at most W = rtb_settings.max_work (default RTB_STEP_WORK) units of
+ * dashpot-law evaluations, whatever N, the
  * extensions, smoothing or clearance: one unit per eq. (1) evaluation (one
  * exp, one log), 3 per smoothed eq. (14) evaluation (each inverse iteration
  * included), N per STS response. A Newton sweep costs N evaluations, a
  * clearance response one or more sweeps; each starts only while a whole
  * sweep is left. The stage starts of the response under way still complete
- * (a consistent iterate needs them), so the hard bound is RTB_STEP_WORK +
- * 6 N u (u = 3 with smoothing, else 1): each of two stages starts with at
+ * (a consistent iterate needs them), so the hard bound is W + 6 N u
+ * (u = 3 with smoothing, else 1): each of two stages starts with at
  * most three sweeps (the pair from the last step, the law at the predicted
  * velocity, rest). rtb_step_info.work reports what a step spent. When the
  * budget runs out the step commits its best iterate and returns
  * RTB_NOT_CONVERGED. A 1 kHz step at N = 15 uses 4 to 5 sweeps
  * (~70 units); with every extension, smoothing and a clearance ~1000-2000.
- * The default bounds a step at ~110 us on the benchmark machine; building
- * the library with -DRTB_STEP_WORK=1024 bounds it at ~35 us, at the price of
- * more RTB_NOT_CONVERGED steps on hard configurations (docs/benchmarks.md). */
+ * The default bounds a step at ~110 us on the benchmark machine; a host that
+ * needs a tighter bound sets max_work (per call, so per element; or builds
+ * with -DRTB_STEP_WORK=W to change the default), at the price of more
+ * RTB_NOT_CONVERGED steps on hard configurations: the measured trade-off
+ * (BM_RandomConfigs/budget:W) is in docs/benchmarks.md. */
 #ifndef RTB_STEP_WORK
 #define RTB_STEP_WORK 4096
 #endif
@@ -258,7 +262,12 @@ typedef struct rtb_settings {
                             1e-10 leaves docs/accuracy.md unchanged and saves ~8%) */
   int32_t max_iter;      /* Newton iterations per stage, 1..100 (default 40) */
   int32_t max_backtrack; /* line-search halvings per iteration, 0..60 (default 30) */
+  int32_t max_work;      /* work budget of one step, 1..RTB_MAX_WORK units (default
+                            RTB_STEP_WORK; see there) */
+  int32_t pad_;          /* unused (rtb_settings_default zeroes it) */
 } rtb_settings;
+
+#define RTB_MAX_WORK (1 << 24) /* largest rtb_settings.max_work */
 
 /* State of one element. Plain data: copy it to save/restore (host rollback). */
 typedef struct rtb_state {
@@ -303,7 +312,7 @@ typedef struct rtb_step_info {
   rtb_real clearance_residual;  /* |F| / (scale (|xb| + g)) of the free bushing
                                    end when it is inside the gap, else 0 */
   int32_t work;                 /* units of the step's work budget spent,
-                                   at most RTB_STEP_WORK + 6 N u (see
+                                   at most max_work + 6 N u (see
                                    RTB_STEP_WORK): the headroom a host has */
   int32_t pad_;                 /* zero */
 } rtb_step_info;

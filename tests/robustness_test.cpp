@@ -368,6 +368,9 @@ TEST(RobustErrors, BadSettings) {
       {"max_iter 101", [](rtb_settings &s) { s.max_iter = 101; }},
       {"max_backtrack -1", [](rtb_settings &s) { s.max_backtrack = -1; }},
       {"max_backtrack 61", [](rtb_settings &s) { s.max_backtrack = 61; }},
+      {"max_work 0", [](rtb_settings &s) { s.max_work = 0; }},
+      {"max_work -1", [](rtb_settings &s) { s.max_work = -1; }},
+      {"max_work > RTB_MAX_WORK", [](rtb_settings &s) { s.max_work = RTB_MAX_WORK + 1; }},
   };
   for (int model : {RTB_MODEL_RT, RTB_MODEL_STS}) {
     const rtb_params pm = defaults(model);

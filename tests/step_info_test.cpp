@@ -137,6 +137,52 @@ TEST(StepInfo, HardStepBacktracksAndReportsNonConvergence) {
   EXPECT_TRUE(std::isfinite(f));
 }
 
+// rtb_settings.max_work bounds a step at run time (issue #11): the same hard
+// step under budgets from 64 to 4096 units spends at most the budget plus
+// the stage starts' 6 N, commits its best iterate (time advances, the force
+// is finite) and says RTB_NOT_CONVERGED; a larger budget is spent further.
+// A budget that a mild step fits in changes nothing.
+TEST(StepInfo, RuntimeWorkBudgetBoundsTheStep) {
+  const rtb_params p = rtb_test::hard_jump_params();
+  int last_work = 0;
+  for (int budget : {64, 256, 1024, 4096}) {
+    rtb_settings set;
+    rtb_settings_default(&set);
+    EXPECT_EQ(set.max_work, RTB_STEP_WORK);
+    set.max_work = budget;
+    rtb_state s;
+    ASSERT_EQ(rtb_state_init(&s, &p, 0.0), RTB_OK);
+    double f;
+    rtb_step_info info;
+    EXPECT_EQ(rtb_step_ex(&s, &p, &set, rtb_test::kHardJump, rtb_test::kHardJumpDt, &f, &info),
+              RTB_NOT_CONVERGED)
+        << budget;
+    EXPECT_LE(info.work, budget + 6 * p.cells) << budget;
+    EXPECT_GT(info.work, budget - p.cells) << budget;
+    EXPECT_GT(info.work, last_work) << budget;
+    last_work = info.work;
+    EXPECT_EQ(s.steps, 1);
+    EXPECT_DOUBLE_EQ(s.time, rtb_test::kHardJumpDt);
+    EXPECT_TRUE(std::isfinite(f));
+  }
+  // 200 units hold a 1 kHz step of the default element (~70): same bits.
+  rtb_params q;
+  ASSERT_EQ(rtb_params_default(&q, RTB_MODEL_RT), RTB_OK);
+  rtb_settings small;
+  rtb_settings_default(&small);
+  small.max_work = 200;
+  rtb_state a, b;
+  ASSERT_EQ(rtb_state_init(&a, &q, 0.0), RTB_OK);
+  b = a;
+  for (int i = 1; i <= 200; ++i) {
+    const double x = std::sin(2.0 * M_PI * 10.0 * i * 1e-3);
+    double fa, fb;
+    ASSERT_EQ(rtb_step(&a, &q, nullptr, x, 1e-3, &fa), RTB_OK);
+    ASSERT_EQ(rtb_step(&b, &q, &small, x, 1e-3, &fb), RTB_OK);
+    ASSERT_EQ(fa, fb) << i;
+  }
+}
+
 TEST(StepInfo, ClearanceIterationsAndResidual) {
   rtb_params p = rt();
   p.backlash = 0.2;

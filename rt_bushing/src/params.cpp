@@ -101,6 +101,8 @@ extern "C" void rtb_settings_default(rtb_settings *s) {
   s->tol = RTB_TOL_DEFAULT;
   s->max_iter = 40;
   s->max_backtrack = 30;
+  s->max_work = RTB_STEP_WORK;
+  s->pad_ = 0;
 }
 
 extern "C" rtb_status rtb_settings_resolve(const rtb_settings *in, rtb_settings *out) {
@@ -109,6 +111,7 @@ extern "C" rtb_status rtb_settings_resolve(const rtb_settings *in, rtb_settings 
   if (!(in->tol >= RTB_TOL_MIN && in->tol <= 1e-2)) return RTB_ERR_SETTINGS;
   if (in->max_iter < 1 || in->max_iter > 100) return RTB_ERR_SETTINGS;
   if (in->max_backtrack < 0 || in->max_backtrack > 60) return RTB_ERR_SETTINGS;
+  if (in->max_work < 1 || in->max_work > RTB_MAX_WORK) return RTB_ERR_SETTINGS;
   *out = *in;
   return RTB_OK;
 }

@@ -32,12 +32,13 @@ typedef struct rtb_stage {
 
 /* Solve one stage with Newton's method (per-DOF variable switching and a line
  * search on the residual norm). (f0, v0), both or neither NULL: a start pair
- * on the dashpot curve (previous solution); v_guess (may be NULL) the
- * fallback start. *budget: law evaluations left in this step, decremented
+ * on the dashpot curve (previous solution); D0 (may be NULL: computed from
+ * the pair) its slopes phi'(f0); v_guess (may be NULL) the fallback start.
+ * *budget: law evaluations left in this step, decremented
  * (stage_newton.cpp). Returns RTB_OK, RTB_NOT_CONVERGED or RTB_ERR_OVERFLOW. */
 rtb_status rtb_stage_solve(const rtb_params *p, const rtb_settings *set, const rtb_real *f0,
-                           const rtb_real *v0, const rtb_real *v_guess, rtb_stage *st,
-                           int *budget);
+                           const rtb_real *v0, const rtb_real *D0, const rtb_real *v_guess,
+                           rtb_stage *st, int *budget);
 
 /* Work units of one dashpot-law evaluation in the step budget
  * (RTB_STEP_WORK): 1 for eq. (1), RTB_SLAW_UNIT for the smoothed eq. (14)

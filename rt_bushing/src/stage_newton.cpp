@@ -183,8 +183,8 @@ void evaluated_start(const Chain &ch, const rtb_real *v_guess, const rtb_real *r
 }  // namespace
 
 extern "C" rtb_status rtb_stage_solve(const rtb_params *p, const rtb_settings *set,
-                                      const rtb_real *f0, const rtb_real *v0, const rtb_real *v_guess,
-                                      rtb_stage *st, int *budget) {
+                                      const rtb_real *f0, const rtb_real *v0, const rtb_real *D0,
+                                      const rtb_real *v_guess, rtb_stage *st, int *budget) {
   Chain ch;
   ch.n = p->cells;
   ch.Kpa = p->Kpa;
@@ -215,10 +215,10 @@ extern "C" rtb_status rtb_stage_solve(const rtb_params *p, const rtb_settings *s
   if (free_start) {
     x->fmax_abs = 0.0;
     for (int k = 0; k < n; ++k) {
-      int evals;
+      int evals = 0;
       x->f[k] = f0[k];
       x->v[k] = v0[k];
-      x->D[k] = rtb_law_dvdf_pair(&ch.law, f0[k], v0[k], &evals);
+      x->D[k] = D0 ? D0[k] : rtb_law_dvdf_pair(&ch.law, f0[k], v0[k], &evals);
       *budget -= evals * ch.unit;
       x->steep[k] = (k == 0 ? ch.hK0 : 2.0 * ch.hKr) * x->D[k] > 1.0;
       x->fmax_abs = fabs(f0[k]) > x->fmax_abs ? fabs(f0[k]) : x->fmax_abs;

@@ -53,13 +53,13 @@ extern "C" rtb_status rtb_chain_advance_from(const rtb_params *p, const rtb_sett
     st[0].h = dt;
     st[0].b1 = p->Kpa * xb_new;
     memcpy(st[0].c, s->y, sizeof(rtb_real) * n);
-    return rtb_stage_solve(p, set, fs, vs, guess, &st[0], budget);
+    return rtb_stage_solve(p, set, fs, vs, NULL, guess, &st[0], budget);
   }
   const rtb_real g = RTB_SDIRK_GAMMA;
   st[0].h = g * dt;
   st[0].b1 = p->Kpa * (s->xb + g * (xb_new - s->xb));
   memcpy(st[0].c, s->y, sizeof(rtb_real) * n);
-  rtb_status a = rtb_stage_solve(p, set, fs, vs, guess, &st[0], budget);
+  rtb_status a = rtb_stage_solve(p, set, fs, vs, NULL, guess, &st[0], budget);
   if (a < 0) return a;
   st[1].h = g * dt;
   st[1].b1 = p->Kpa * xb_new;
@@ -68,8 +68,10 @@ extern "C" rtb_status rtb_chain_advance_from(const rtb_params *p, const rtb_sett
     /* from (t_n, v_n) and (t_n + g dt, v1) to t_n + dt */
     guess[k] = st[0].v[k] + (1.0 - g) / g * (st[0].v[k] - s->v[k]);
   }
-  /* Free start of the second stage: the first stage's solution. */
-  return worse(a, rtb_stage_solve(p, set, st[0].f, st[0].v, guess, &st[1], budget));
+  /* Free start of the second stage: the first stage's solution, with the
+   * slopes of its last sweep (no law evaluation: a smoothed law's costs
+   * RTB_SLAW_UNIT each). */
+  return worse(a, rtb_stage_solve(p, set, st[0].f, st[0].v, st[0].D, guess, &st[1], budget));
 }
 
 /* Tangent of one converged stage: (I + h D K) dy = dc + h D e1 db1. */
@@ -124,7 +126,7 @@ struct Cost {
   }
 };
 
-/* budget: the step's work left (RTB_STEP_WORK). warm: r holds an earlier
+/* budget: the step's work left (rtb_settings.max_work). warm: r holds an earlier
  * response of this step (the clearance search); its first stage starts the
  * new one (closer than the last step's end). */
 void respond(const rtb_state *s, const rtb_params *p, const rtb_settings *set,
@@ -308,7 +310,7 @@ extern "C" rtb_status rtb_step_core(const rtb_state *s, const rtb_params *p,
   Cost cost = {0, 0, 0};
   rtb_real xb = x, clearance_residual = 0.0;
   int contact = 2;
-  int budget = RTB_STEP_WORK;
+  int budget = set.max_work;
   rtb_status clearance = RTB_OK;
   if (p->backlash > 0.0 || p->slack != 0.0)
     clearance = resolve_gap(s, p, &set, &sp, x, dt, backlash_iters, &budget, &r, &cost, &xb,
@@ -364,7 +366,7 @@ extern "C" rtb_status rtb_step_core(const rtb_state *s, const rtb_params *p,
     info->stages = p->model == RTB_MODEL_RT ? rtb_integrator_stages(p) : 1;
     info->residual = r.residual;
     info->clearance_residual = contact == 0 ? clearance_residual : 0.0;  /* floating end */
-    info->work = RTB_STEP_WORK - budget;
+    info->work = set.max_work - budget;
     info->pad_ = 0;
   }
   return r.status;
