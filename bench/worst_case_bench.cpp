@@ -221,6 +221,6 @@ BENCHMARK(BM_Extension)->DenseRange(0, 10)->ArgName("ext")->Iterations(1)
 // The default budget (RTB_STEP_WORK) and tighter ones set at run time
 // (rtb_settings.max_work): the bound a host buys against the share of
 // unconverged steps on these (extreme) configurations.
-BENCHMARK(BM_RandomConfigs)->Args({300, RTB_STEP_WORK})->Args({300, 1024})->Args({300, 512})
+BENCHMARK(BM_RandomConfigs)->Args({300, RTB_STEP_WORK})->Args({300, 1024})->Args({300, 640})->Args({300, 512})
     ->Args({300, 256})->ArgNames({"sets", "budget"})->Iterations(1)
     ->Unit(benchmark::kMillisecond);

@@ -183,6 +183,33 @@ TEST(StepInfo, RuntimeWorkBudgetBoundsTheStep) {
   }
 }
 
+// STS: one unit per cell and active-set solve, and a response's solves are
+// capped by what the budget has left (a configuration whose active set
+// cycled to its 2N + 5 cap used to take 27 us per step under any budget).
+TEST(StepInfo, StsActiveSetSolvesAreChargedAndCapped) {
+  rtb_params p;
+  ASSERT_EQ(rtb_params_default(&p, RTB_MODEL_STS), RTB_OK);
+  const double x = 5.0;  // slides a front of cells: several active-set solves
+  rtb_state s;
+  ASSERT_EQ(rtb_state_init(&s, &p, 0.0), RTB_OK);
+  rtb_state t = s;
+  double f;
+  rtb_step_info info;
+  ASSERT_EQ(rtb_step_ex(&t, &p, nullptr, x, 1e-3, &f, &info), RTB_OK);
+  ASSERT_GT(info.iterations, 2);
+  EXPECT_EQ(info.work, p.cells * info.iterations);
+  // A budget of two solves: the response stops there, committed, and says so.
+  rtb_settings set;
+  rtb_settings_default(&set);
+  set.max_work = 2 * p.cells;
+  t = s;
+  EXPECT_EQ(rtb_step_ex(&t, &p, &set, x, 1e-3, &f, &info), RTB_NOT_CONVERGED);
+  EXPECT_EQ(info.iterations, 2);
+  EXPECT_EQ(info.work, 2 * p.cells);
+  EXPECT_EQ(t.steps, 1);
+  EXPECT_TRUE(std::isfinite(f));
+}
+
 TEST(StepInfo, ClearanceIterationsAndResidual) {
   rtb_params p = rt();
   p.backlash = 0.2;
