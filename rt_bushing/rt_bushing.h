@@ -212,11 +212,13 @@ typedef struct rtb_params {
  * budget runs out the step commits its best iterate and returns
  * RTB_NOT_CONVERGED. A 1 kHz step at N = 15 uses 4 to 5 sweeps
  * (~70 units); with every extension, smoothing and a clearance ~1000-2000.
- * The default bounds a step at ~110 us on the benchmark machine; a host that
- * needs a tighter bound sets max_work (per call, so per element; or builds
- * with -DRTB_STEP_WORK=W to change the default), at the price of more
- * RTB_NOT_CONVERGED steps on hard configurations: the measured trade-off
- * (BM_RandomConfigs/budget:W) is in docs/benchmarks.md. */
+ * A unit costs ~26 ns on the benchmark machine (a 2-vCPU AMD EPYC guest),
+ * so the default bounds a step at ~110 us; a host that needs a tighter bound
+ * sets max_work (per call, so per element; or builds with -DRTB_STEP_WORK=W
+ * to change the default): 640 units measured 16.5 us for the slowest step
+ * of every random valid configuration, at the price of more
+ * RTB_NOT_CONVERGED steps on hard configurations (BM_RandomConfigs/budget:W,
+ * docs/benchmarks.md). */
 #ifndef RTB_STEP_WORK
 #define RTB_STEP_WORK 4096
 #endif
