@@ -123,6 +123,8 @@ void BM_Extension(benchmark::State &state) {
   const int e = static_cast<int>(state.range(0));
   const rtb_params p = extension_params(e);
   const long n = 20000, warm = 2000, repeat = repeat_count();
+  rtb_settings defaults;
+  rtb_settings_default(&defaults);
   std::mt19937_64 g(12345);
   std::normal_distribution<double> noise(0.0, 0.01);
   std::vector<double> xs(warm + n);
@@ -139,8 +141,7 @@ void BM_Extension(benchmark::State &state) {
     top.clear();
     nc = errors = 0;
     for (long i = warm; i < warm + n; ++i) {
-      Candidate c{0.0, p, s, xs[i], 1e-3, {}};
-      rtb_settings_default(&c.set);
+      Candidate c{0.0, p, s, xs[i], 1e-3, defaults};
       rtb_status st;
       c.ns = timed_step(&s, p, &c.set, xs[i], 1e-3, repeat, &st);
       nc += st == RTB_NOT_CONVERGED;

@@ -32,8 +32,6 @@ struct Current {
   double J_trim = 0;  // trimmed fit misfit
 };
 
-// What every stage reads: the records, the selection figure's set-up, the
-// options, the data's scales and the noise floor once stage 2 has run.
 // The records of `a` followed by those of `b` (fit then held-out: the
 // screening and selection records, issue #10 item 3).
 inline std::vector<Record> concat(const std::vector<Record> &a, const std::vector<Record> &b) {
@@ -42,6 +40,8 @@ inline std::vector<Record> concat(const std::vector<Record> &a, const std::vecto
   return all;
 }
 
+// What every stage reads: the records, the selection figure's set-up, the
+// options, the data's scales and the noise floor once stage 2 has run.
 struct Context {
   const std::vector<Record> &fit, &holdout, all;
   const std::vector<Record> &sel;  // records of the selection figure

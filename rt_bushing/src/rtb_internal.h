@@ -43,7 +43,7 @@ rtb_status rtb_stage_solve(const rtb_params *p, const rtb_settings *set, const r
 /* Work units of one dashpot-law evaluation in the step budget
  * (RTB_STEP_WORK): 1 for eq. (1), RTB_SLAW_UNIT for the smoothed eq. (14)
  * (four transcendental calls instead of two, measured ~3x the time). STS
- * has no law; each of its responses is charged one unit per cell. */
+ * has no law; each of its active-set solves is charged one unit per cell. */
 #define RTB_SLAW_UNIT 3
 static inline int rtb_law_unit(const rtb_params *p) {
   return p->model == RTB_MODEL_RT && p->smoothing > 0.0 ? RTB_SLAW_UNIT : 1;

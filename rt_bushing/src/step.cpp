@@ -69,8 +69,8 @@ extern "C" rtb_status rtb_chain_advance_from(const rtb_params *p, const rtb_sett
     guess[k] = st[0].v[k] + (1.0 - g) / g * (st[0].v[k] - s->v[k]);
   }
   /* Free start of the second stage: the first stage's solution, with the
-   * slopes of its last sweep (no law evaluation: a smoothed law's costs
-   * RTB_SLAW_UNIT each). */
+   * slopes of its last sweep (no law evaluation; a smoothed one costs
+   * RTB_SLAW_UNIT). */
   return worse(a, rtb_stage_solve(p, set, st[0].f, st[0].v, st[0].D, guess, &st[1], budget));
 }
 
