@@ -45,6 +45,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/bench_settings.h"
 #include "rt_bushing/rt_bushing.h"
 
 namespace {
@@ -100,12 +101,12 @@ inline rtb_status do_step(int variant, rtb_state *s, const rtb_params *p, double
   if (variant == kEvalSdirk2) {
     rtb_state trial;
     double dF;
-    rtb_status st = rtb_evaluate(s, p, nullptr, x, kDt, &trial, F, &dF);
+    rtb_status st = rtb_evaluate(s, p, bench_settings(), x, kDt, &trial, F, &dF);
     benchmark::DoNotOptimize(dF);
     if (st >= 0) rtb_commit(s, &trial);
     return st;
   }
-  return rtb_step(s, p, nullptr, x, kDt, F);
+  return rtb_step(s, p, bench_settings(), x, kDt, F);
 }
 
 using Clock = std::chrono::steady_clock;

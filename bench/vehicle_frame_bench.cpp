@@ -14,7 +14,8 @@
  *
  * Counters: frame_us = median wall time of a frame (240 steps),
  * frame_p99_us, frame_max_us, step_mean_ns, not_converged, errors.
- * Frames: RTB_BENCH_FRAMES (default 5000) after 500 warm-up frames.
+ * Frames: RTB_BENCH_FRAMES (default 5000) after 500 warm-up frames;
+ * RTB_BENCH_TOL sets the Newton tolerance (bench_settings.h).
  */
 #include <benchmark/benchmark.h>
 
@@ -25,6 +26,7 @@
 #include <random>
 #include <vector>
 
+#include "bench/bench_settings.h"
 #include "rt_bushing/rt_bushing.h"
 
 namespace {
@@ -98,7 +100,7 @@ void BM_VehicleFrame(benchmark::State &state) {
   auto frame = [&](long *nc, long *errors) {
     for (int i = 0; i < kElements; ++i) {
       double F;
-      const rtb_status st = rtb_step(&el[i].s, &el[i].p, nullptr, xs[i], kDt, &F);
+      const rtb_status st = rtb_step(&el[i].s, &el[i].p, bench_settings(), xs[i], kDt, &F);
       benchmark::DoNotOptimize(F);
       *nc += st == RTB_NOT_CONVERGED;
       *errors += st < 0;

@@ -1,4 +1,5 @@
-// cause_revision_test.cpp -- stage 5d of the diagnosis (cause_revision.cpp):
+// cause_revision_test.cpp -- stages 5c-5d of the diagnosis (cause_revision.cpp):
+// an accepted cause whose gain was not its own is no cause (not_a_cause);
 // an earlier cause that a later one made redundant is dropped, one that
 // still pays is kept. Records of the own generator (synthetic_records.h), 4 s,
 // 0.5% noise; the model with both causes is fitted jointly first, as the
@@ -28,24 +29,42 @@ struct Revision {
   DiagnoseResult R;
 };
 
+DiagnoseOptions quiet_options() {
+  DiagnoseOptions o;
+  o.quiet = true;
+  return o;
+}
+
+// The pipeline's context on a scenario's records (selection on the held-out
+// records from their start), with the true model's held-out error as the
+// noise floor. Not copyable: the context refers to its own options.
+struct Setup {
+  DiagnoseOptions opt = quiet_options();
+  diag::Context cx;
+  explicit Setup(const Scenario &sc)
+      : cx{sc.fit, sc.holdout, diag::concat(sc.fit, sc.holdout), sc.holdout, from_start(opt.misfit),
+           opt, data_scales(sc.fit), {}} {
+    ExtModel truth;
+    truth.p = sc.truth.p;
+    truth.delay = sc.truth.delay;
+    truth.offset = sc.truth.offset;
+    cx.floor_sel = extended_error(truth, sc.holdout, cx.sel_opt);  // the noise floor
+  }
+  Setup(const Setup &) = delete;
+  static MisfitOptions from_start(MisfitOptions m) {
+    m.fit_from = 0.0;
+    return m;
+  }
+};
+
 Revision revise(const Scenario &sc, const ExtModel &start, const std::vector<Candidate> &causes) {
-  DiagnoseOptions opt;
-  opt.quiet = true;
-  MisfitOptions hold_opt = opt.misfit;
-  hold_opt.fit_from = 0.0;
-  diag::Context cx{sc.fit, sc.holdout, diag::concat(sc.fit, sc.holdout), sc.holdout, hold_opt, opt,
-                   data_scales(sc.fit), {}};
-  ExtModel truth;
-  truth.p = sc.truth.p;
-  truth.delay = sc.truth.delay;
-  truth.offset = sc.truth.offset;
-  cx.floor_sel = extended_error(truth, sc.holdout, hold_opt);  // the noise floor
-  const ExtFitSpec spec = combined_spec(causes, cx.sc);
-  const ExtFitResult f = fit_extended(sc.fit, start, spec, opt.misfit);
+  const Setup su(sc);
+  const ExtFitSpec spec = combined_spec(causes, su.cx.sc);
+  const ExtFitResult f = fit_extended(sc.fit, start, spec, su.opt.misfit);
   Revision r;
-  r.before = diag::make_current(f.model, spec, causes, cx);
+  r.before = diag::make_current(f.model, spec, causes, su.cx);
   r.after = r.before;
-  r.dropped = diag::drop_redundant(r.after, cx, r.R);
+  r.dropped = diag::drop_redundant(r.after, su.cx, r.R);
   return r;
 }
 
@@ -88,4 +107,99 @@ TEST(DropRedundant, AnEarlierCauseThatStillPaysIsKept) {
   EXPECT_EQ(r.after.causes[0].name, "maxwell");
   EXPECT_EQ(r.after.error_holdout, r.before.error_holdout);
   EXPECT_GT(r.after.model.p.maxwell_k, 0.5 * sc.truth.p.maxwell_k);
+}
+
+// Stage 5c, second half (not_a_cause): the accepted cause is judged against
+// the model without it refitted from the current one.
+namespace {
+
+struct Judged {
+  bool rejected = false;
+  diag::Current before, with, after;
+  DiagnoseResult R;
+};
+
+// `before_causes` fitted from `before_start`, then `c` added and all fitted
+// jointly from `start`; not_a_cause on the result.
+Judged judge(const Scenario &sc, const ExtModel &before_start, const ExtModel &start,
+             const std::vector<Candidate> &before_causes, const Candidate &c) {
+  const Setup su(sc);
+  const diag::Context &cx = su.cx;
+  const DiagnoseOptions &opt = su.opt;
+  const ExtFitSpec spec0 = combined_spec(before_causes, cx.sc);
+  Judged j;
+  j.before = diag::make_current(fit_extended(sc.fit, before_start, spec0, opt.misfit).model, spec0,
+                                before_causes, cx);
+  std::vector<Candidate> causes = before_causes;
+  causes.push_back(c);
+  const ExtFitSpec spec = combined_spec(causes, cx.sc);
+  j.with = diag::make_current(fit_extended(sc.fit, start, spec, opt.misfit).model, spec, causes, cx);
+  j.after = j.with;
+  j.rejected = diag::not_a_cause(j.after, j.before, c, cx, j.R);
+  return j;
+}
+
+}  // namespace
+
+// A spectrum on clearance data, refitted to nothing (k = 0, as in refgen
+// backlash_held_s6 after the refit from the STS start): no cause. The model
+// left is the clearance alone, the spectrum switched off with its range.
+TEST(NotACause, ACauseRefittedToNothingIsNoCause) {
+  const Scenario sc = hidden_effect_scenario("backlash", 5, 0.005, 4.0);
+  ExtModel start;
+  start.p = sc.truth.p;
+  set_spectrum_range(start.p, data_scales(sc.fit), 0.01);
+  start.p.spec_exp = 0.3;  // spec_k = 0: the truth has no spectrum
+  ExtModel before;
+  before.p = sc.truth.p;
+  const Judged j = judge(sc, before, start, {word("backlash")}, word("relaxation_spectrum"));
+  ASSERT_LT(j.with.model.p.spec_k, 0.05 * data_scales(sc.fit).Ksec);  // the fit keeps it small
+  EXPECT_TRUE(j.rejected);
+  ASSERT_EQ(j.after.causes.size(), 1u);
+  EXPECT_EQ(j.after.causes[0].name, "backlash");
+  EXPECT_EQ(j.after.model.p.spec_k, 0.0);
+  EXPECT_EQ(j.after.model.p.spec_tau_min, 0.0);
+  ASSERT_EQ(j.R.dropped.size(), 1u);
+  EXPECT_EQ(j.R.dropped[0].name, "relaxation_spectrum");
+  EXPECT_DOUBLE_EQ(j.R.dropped[0].error_without, j.after.error_holdout);
+  EXPECT_EQ(j.R.extended_fit.model.p.spec_k, 0.0);
+}
+
+// A Maxwell branch just below a spectrum screened too narrow (from 30 ms
+// where the truth starts at 3 ms): the spectrum widened to the branch holds
+// what it does, so the branch is no cause and the spectrum now reaches it.
+TEST(NotACause, AMaxwellBranchAtTheSpectrumsFastEndWidensTheSpectrum) {
+  const Scenario sc = hidden_effect_scenario("relaxation_spectrum", 5, 0.005, 4.0);
+  const DataScales s = data_scales(sc.fit);
+  ExtModel before;
+  before.p = sc.truth.p;
+  set_spectrum_range(before.p, s, 0.03);
+  ExtModel start = before;
+  start.p.maxwell_k = 0.2 * sc.truth.p.spec_k;
+  start.p.maxwell_tau = 0.01;
+  const Judged j = judge(sc, before, start, {word("relaxation_spectrum")}, word("maxwell"));
+  ASSERT_TRUE(diag::extends_spectrum(word("maxwell"), j.before));
+  EXPECT_TRUE(j.rejected);
+  ASSERT_EQ(j.after.causes.size(), 1u);
+  EXPECT_EQ(j.after.causes[0].name, "relaxation_spectrum");
+  EXPECT_EQ(j.after.model.p.maxwell_k, 0.0);
+  EXPECT_LE(j.after.model.p.spec_tau_min, j.with.model.p.maxwell_tau);
+  EXPECT_LT(j.after.error_holdout, 1.1 * j.with.error_holdout);
+}
+
+// A real Maxwell branch on Maxwell data, first cause: it pays several-fold
+// against plain RT refitted, so it stays and nothing changes.
+TEST(NotACause, ARealCauseIsKept) {
+  const Scenario sc = hidden_effect_scenario("maxwell", 5, 0.005, 4.0);
+  ExtModel start;
+  start.p = sc.truth.p;
+  ExtModel before = start;
+  before.p.maxwell_k = before.p.maxwell_tau = 0.0;
+  const Judged j = judge(sc, before, start, {}, word("maxwell"));
+  EXPECT_FALSE(diag::extends_spectrum(word("maxwell"), j.before));
+  EXPECT_FALSE(j.rejected);
+  EXPECT_TRUE(j.R.dropped.empty());
+  ASSERT_EQ(j.after.causes.size(), 1u);
+  EXPECT_EQ(j.after.error_holdout, j.with.error_holdout);
+  EXPECT_GT(j.after.model.p.maxwell_k, 0.5 * sc.truth.p.maxwell_k);
 }

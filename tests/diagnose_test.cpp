@@ -86,6 +86,12 @@ TEST_P(DiagnoseHidden, NamesTheHiddenEffect) {
   if (effect == "backlash") EXPECT_NEAR(R.extended.p.backlash / sc.truth.p.backlash, 1.0, 0.05);
   if (effect == "offset") EXPECT_NEAR(R.extended.offset / sc.truth.offset, 1.0, 0.10);
   if (effect == "delay") EXPECT_NEAR(R.extended.delay / sc.truth.delay, 1.0, 0.10);
+  // Every cause is reported with its sizes in the final model (final_sizes).
+  for (const Cause &c : R.causes)
+    for (size_t i = 0; i < c.names.size(); ++i)
+      for (size_t k = 0; k < R.extended_fit.names.size(); ++k)
+        if (R.extended_fit.names[k] == c.names[i])
+          EXPECT_EQ(c.value[i], R.extended_fit.value[(Eigen::Index)k]) << c.names[i];
   // The noise floor estimated from the data is the true model's error (not
   // for inertia: there the truth, evaluated at the sample rate, has its own
   // one-sample spikes at input corners, which are no noise).

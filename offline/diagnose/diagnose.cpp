@@ -126,13 +126,18 @@ Current accept_causes(Current cur, std::vector<CandidateOutcome> round_out, cons
     const Current before = cur;
     CandidateOutcome accepted = *best;
     cur = diag::make_current(best->fit.model, combined_spec(causes, cx.sc), causes, cx);
-    if (diag::refit_from_sts(cur, cx, accepted.fit)) {
+    const bool refit = diag::refit_from_sts(cur, cx, accepted.fit);
+    if (refit) {
       cur = diag::make_current(accepted.fit.model, cur.spec, causes, cx);
       accepted.error_holdout = cur.error_holdout;
     }
-    R.causes.push_back(diag::make_cause(accepted, before));
-    R.extended_fit = accepted.fit;
-    if (!R.imposed) {
+    const bool rejected = !R.imposed && (refit || diag::extends_spectrum(best->cand, before)) &&
+                          diag::not_a_cause(cur, before, best->cand, cx, R);
+    if (!rejected) {
+      R.causes.push_back(diag::make_cause(accepted, before));
+      R.extended_fit = accepted.fit;
+    }
+    if (!R.imposed && !rejected) {
       const int gone = diag::drop_redundant(cur, cx, R);
       if (gone >= 0) R.causes.erase(R.causes.begin() + gone);
     }
@@ -141,6 +146,7 @@ Current accept_causes(Current cur, std::vector<CandidateOutcome> round_out, cons
       break;
     round_out = diag::one_round(cur, cx, round + 1, R);
   }
+  diag::final_sizes(R);
   return cur;
 }
 

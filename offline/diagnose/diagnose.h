@@ -30,8 +30,12 @@
 //                 The accepted cause's model is refitted once from the STS
 //                 start of the records its artefacts removed (the joint fit
 //                 began in the basin that compensated for the missing cause);
-//                 the refit stands if it fits better. An earlier cause that
-//                 no longer pays once the new one is in is dropped. Stages
+//                 the refit stands if it fits better; if it does, the cause
+//                 must still pay against the model without it refitted from
+//                 the new basin (and a Maxwell branch after the spectrum
+//                 against the spectrum widened to it), or it is no cause.
+//                 An earlier cause that no longer pays once the new one is
+//                 in is dropped. Stages
 //                 3-5 repeat at the extended model while a further cause
 //                 still pays on held-out data and the residual is above the
 //                 noise floor (several causes).

@@ -3,7 +3,8 @@
 // order. Not part of the offline tool's interface (rtb_offline.h,
 // diagnose.h).
 //   cause_round.cpp     stages 3-5a: screen, joint fits, judge one round
-//   cause_revision.cpp  stages 5c-5d: refit an accepted cause, drop a stale one
+//   cause_revision.cpp  stages 5c-5d: refit an accepted cause, reject it if its
+//                       gain was not its own, drop a stale one
 //   verdict_text.cpp    stage 6: the one-sentence verdict, per-record figures
 #ifndef RTB_OFFLINE_DIAGNOSE_STAGES_H
 #define RTB_OFFLINE_DIAGNOSE_STAGES_H
@@ -76,11 +77,22 @@ const CandidateOutcome *imposed_cause(const std::vector<CandidateOutcome> &round
 // the refit replaced `fit`.
 bool refit_from_sts(const Current &cur, const Context &cx, ExtFitResult &fit);
 
+// Stage 5c: whether the accepted cause `c` needs the check below: a Maxwell
+// branch after the relaxation spectrum (it may be the spectrum's missing end).
+bool extends_spectrum(const Candidate &c, const Current &before);
+// Stage 5c: after a refit that replaced the fit, or when extends_spectrum,
+// is `c` still worth its threshold against the model without it (`before`'s
+// causes, the spectrum widened to the branch) refitted from the current one?
+// If not, cur becomes that model; true.
+bool not_a_cause(Current &cur, const Current &before, const Candidate &c, const Context &cx,
+                 DiagnoseResult &R);
 // Stage 5d: drop an earlier cause that no longer pays; its index, or -1.
 int drop_redundant(Current &cur, const Context &cx, DiagnoseResult &R);
 
 // The report entry of an accepted cause (sizes, gain over `before`).
 Cause make_cause(const CandidateOutcome &co, const Current &before);
+// Every cause's description and sizes taken from the final fit (R.extended_fit).
+void final_sizes(DiagnoseResult &R);
 
 // Stage 6: the verdict sentence of a finished result.
 std::string verdict_text(const DiagnoseResult &R);
