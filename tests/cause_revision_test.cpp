@@ -38,10 +38,10 @@ DiagnoseOptions quiet_options() {
 // The pipeline's context on a scenario's records (selection on the held-out
 // records from their start), with the true model's held-out error as the
 // noise floor. Not copyable: the context refers to its own options.
-struct Setup {
+struct DiagSetup {
   DiagnoseOptions opt = quiet_options();
   diag::Context cx;
-  explicit Setup(const Scenario &sc)
+  explicit DiagSetup(const Scenario &sc)
       : cx{sc.fit, sc.holdout, diag::concat(sc.fit, sc.holdout), sc.holdout, from_start(opt.misfit),
            opt, data_scales(sc.fit), {}} {
     ExtModel truth;
@@ -50,7 +50,7 @@ struct Setup {
     truth.offset = sc.truth.offset;
     cx.floor_sel = extended_error(truth, sc.holdout, cx.sel_opt);  // the noise floor
   }
-  Setup(const Setup &) = delete;
+  DiagSetup(const DiagSetup &) = delete;
   static MisfitOptions from_start(MisfitOptions m) {
     m.fit_from = 0.0;
     return m;
@@ -58,7 +58,7 @@ struct Setup {
 };
 
 Revision revise(const Scenario &sc, const ExtModel &start, const std::vector<Candidate> &causes) {
-  const Setup su(sc);
+  const DiagSetup su(sc);
   const ExtFitSpec spec = combined_spec(causes, su.cx.sc);
   const ExtFitResult f = fit_extended(sc.fit, start, spec, su.opt.misfit);
   Revision r;
@@ -123,7 +123,7 @@ struct Judged {
 // jointly from `start`; not_a_cause on the result.
 Judged judge(const Scenario &sc, const ExtModel &before_start, const ExtModel &start,
              const std::vector<Candidate> &before_causes, const Candidate &c) {
-  const Setup su(sc);
+  const DiagSetup su(sc);
   const diag::Context &cx = su.cx;
   const DiagnoseOptions &opt = su.opt;
   const ExtFitSpec spec0 = combined_spec(before_causes, cx.sc);
@@ -202,4 +202,53 @@ TEST(NotACause, ARealCauseIsKept) {
   ASSERT_EQ(j.after.causes.size(), 1u);
   EXPECT_EQ(j.after.error_holdout, j.with.error_holdout);
   EXPECT_GT(j.after.model.p.maxwell_k, 0.5 * sc.truth.p.maxwell_k);
+}
+
+// Stage 5c, other_cells_explain: a later cause must also pay against the
+// earlier causes refitted at another cell count.
+namespace {
+
+struct CellsJudged {
+  bool rejected = false;
+  diag::Current before, with, after;
+};
+
+CellsJudged judge_cells(const Scenario &sc, const ExtModel &before_start, const ExtModel &start,
+                        const std::vector<Candidate> &before_causes, const Candidate &c) {
+  const DiagSetup su(sc);
+  const ExtFitSpec spec0 = combined_spec(before_causes, su.cx.sc);
+  CellsJudged j;
+  j.before = diag::make_current(fit_extended(sc.fit, before_start, spec0, su.opt.misfit).model,
+                                spec0, before_causes, su.cx);
+  std::vector<Candidate> causes = before_causes;
+  causes.push_back(c);
+  const ExtFitSpec spec = combined_spec(causes, su.cx.sc);
+  j.with = diag::make_current(fit_extended(sc.fit, start, spec, su.opt.misfit).model, spec, causes,
+                              su.cx);
+  j.after = j.with;
+  DiagnoseResult R;
+  j.rejected = diag::other_cells_explain(j.after, j.before, c, su.cx, R);
+  return j;
+}
+
+}  // namespace
+
+// The positive case (a spectrum that only mends the cell count) needs a
+// specimen whose records tell the cell count: the own generator's do not
+// (15 cells fit its 5-, 10- and 30-cell slack strips, even slack_s6's
+// specimen, to the floor). It is IndependentDiagnose.SlackStripOfAnotherCellCount,
+// on refgen's records.
+
+// A real clearance after an earlier word: no cell count stands in for it.
+TEST(OtherCells, ARealLaterCauseIsKept) {
+  const Scenario sc = hidden_effect_scenario("backlash", 5, 0.005, 4.0);
+  ExtModel start;
+  start.p = sc.truth.p;
+  start.p.viscous_c = 1e-3;
+  ExtModel before = start;
+  before.p.backlash = 0.0;
+  const CellsJudged j = judge_cells(sc, before, start, {word("viscous")}, word("backlash"));
+  EXPECT_FALSE(j.rejected);
+  EXPECT_EQ(j.after.model.p.cells, RTB_DEFAULT_CELLS);
+  EXPECT_EQ(j.after.error_holdout, j.with.error_holdout);
 }

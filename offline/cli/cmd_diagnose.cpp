@@ -50,7 +50,9 @@ int run_diagnose(int argc, char **argv) {
       {
           {"data", "FILE", "fit record CSV; repeat for several", true, true},
           {"holdout", "FILE", "held-out record CSV; repeat for several", false, true},
-          {"cells", "N", "number of RT cells (default 15)"},
+          {"cells", "N",
+           "number of RT cells (default 15; a later cause must also beat 10, 12 and 20 "
+           "cells, which the extended model may then take)"},
           {"fit-from", "S", "fit only samples from t0 + S on"},
           {"only", "LIST", "try only these candidates (comma separated)"},
           {"causes", "LIST",

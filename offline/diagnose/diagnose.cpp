@@ -131,8 +131,10 @@ Current accept_causes(Current cur, std::vector<CandidateOutcome> round_out, cons
       cur = diag::make_current(accepted.fit.model, cur.spec, causes, cx);
       accepted.error_holdout = cur.error_holdout;
     }
-    const bool rejected = !R.imposed && (refit || diag::extends_spectrum(best->cand, before)) &&
-                          diag::not_a_cause(cur, before, best->cand, cx, R);
+    const bool rejected =
+        !R.imposed && (((refit || diag::extends_spectrum(best->cand, before)) &&
+                        diag::not_a_cause(cur, before, best->cand, cx, R)) ||
+                       diag::other_cells_explain(cur, before, best->cand, cx, R));
     if (!rejected) {
       R.causes.push_back(diag::make_cause(accepted, before));
       R.extended_fit = accepted.fit;

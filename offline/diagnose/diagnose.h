@@ -34,6 +34,10 @@
 //                 must still pay against the model without it refitted from
 //                 the new basin (and a Maxwell branch after the spectrum
 //                 against the spectrum widened to it), or it is no cause.
+//                 A later cause must also pay against the earlier causes
+//                 refitted at another cell count N (10, 12, 20): the chain's
+//                 N is a modelling choice, and a specimen that is another
+//                 chain's leaves a residual a further word would take.
 //                 An earlier cause that no longer pays once the new one is
 //                 in is dropped. Stages
 //                 3-5 repeat at the extended model while a further cause

@@ -86,6 +86,11 @@ bool extends_spectrum(const Candidate &c, const Current &before);
 // If not, cur becomes that model; true.
 bool not_a_cause(Current &cur, const Current &before, const Candidate &c, const Context &cx,
                  DiagnoseResult &R);
+// Stage 5c: does a later cause `c` also pay against `before`'s causes
+// refitted at another cell count? If not, cur becomes the best such model;
+// true.
+bool other_cells_explain(Current &cur, const Current &before, const Candidate &c,
+                         const Context &cx, DiagnoseResult &R);
 // Stage 5d: drop an earlier cause that no longer pays; its index, or -1.
 int drop_redundant(Current &cur, const Context &cx, DiagnoseResult &R);
 

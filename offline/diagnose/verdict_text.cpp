@@ -36,6 +36,12 @@ std::string verdict_text(const DiagnoseResult &R) {
   } else {
     for (size_t i = 0; i < R.causes.size(); ++i) v += (i ? " + " : "") + R.causes[i].description;
   }
+  if (R.extended.p.cells != R.baseline.p.cells) {  // other_cells_explain
+    char b[160];
+    std::snprintf(b, sizeof b, ", on a chain of %d cells (the data prefer it to %d)",
+                  (int)R.extended.p.cells, (int)R.baseline.p.cells);
+    v += b;
+  }
   v += std::string("; ") + (R.has_holdout ? "holdout" : "fit") + " error " +
        pct(R.baseline_error_holdout);
   v += std::string(" -> ") + pct(R.extended_error_holdout);
