@@ -111,10 +111,10 @@ bool not_a_cause(Current &cur, const Current &before, const Candidate &c, const 
 // N = 12 gives 0.82%). A later cause must also pay against the earlier
 // causes refitted at another N, each from the STS start at that N with the
 // extension sizes kept (the current model's basin, rescaled, held slack_s6
-// at 1.7% for every N). The best such
-// model (lowest trimmed held-out error) is the alternative. Returns true
-// (cur becomes that model, R.dropped records the cause) when the cause does
-// not pay against it.
+// at 1.7% for every N). The best such model (lowest trimmed held-out error)
+// is the alternative. Returns true (cur becomes that model, R.dropped
+// records the cause) when the cause does not pay against it. Only later
+// causes: the first is judged at the user's N.
 static const int kOtherCells[] = {10, 12, 20};
 
 bool other_cells_explain(Current &cur, const Current &before, const Candidate &c,
