@@ -4,8 +4,10 @@
 // rejected if its gain was not its own (the new basin's, or a widened
 // spectrum's), and an earlier cause the new one made redundant is dropped.
 // Also the report entries of the causes.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <iterator>
 
 #include "diagnose/diagnose_stages.h"
 #include "identify/sts_init.h"
@@ -114,7 +116,8 @@ bool not_a_cause(Current &cur, const Current &before, const Candidate &c, const 
 // at 1.7% for every N). The best such model (lowest trimmed held-out error)
 // is the alternative. Returns true (cur becomes that model, R.dropped
 // records the cause) when the cause does not pay against it. Only later
-// causes: the first is judged at the user's N.
+// causes: the first is judged at the user's N (which is among the
+// alternatives once the model has left it).
 static const int kOtherCells[] = {10, 12, 20};
 
 bool other_cells_explain(Current &cur, const Current &before, const Candidate &c,
@@ -125,8 +128,11 @@ bool other_cells_explain(Current &cur, const Current &before, const Candidate &c
   bool have = false;
   Current best;
   ExtFitResult best_fit;
-  for (int m : kOtherCells) {
-    if (m == n || m > RTB_MAX_CELLS) continue;
+  std::vector<int> counts(std::begin(kOtherCells), std::end(kOtherCells));
+  if (std::find(counts.begin(), counts.end(), opt.cells) == counts.end())
+    counts.push_back(opt.cells);
+  for (int m : counts) {
+    if (m == n || m < 1 || m > RTB_MAX_CELLS) continue;
     ExtModel start = before.model;
     const rtb_params sts = sts_initial_guess(artefact_corrected(cx.fit, before.model), m,
                                              opt.alpha0, opt.misfit.fit_from);
