@@ -52,7 +52,7 @@ void expect_solves(int n, double hK0, double hKr, const std::vector<double> &D, 
 
 TEST(NewtonLU, SolvesToRoundingOverTheSlopeRange) {
   std::mt19937_64 g(11);
-  for (int n : {1, 2, 3, 15, 32})
+  for (int n : {1, 2, 3, 4, 5, 15, 16, 32})
     for (int rep = 0; rep < 200; ++rep) {
       const std::vector<double> D = slopes(g, n, -9.0, 9.0);
       expect_solves(n, 0.3 + rep * 1e-3, 0.1, D, g);

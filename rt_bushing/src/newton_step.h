@@ -146,24 +146,27 @@ static inline void rtb_newton_substitute(const rtb_newton_lu *F, rtb_real sign, 
   rtb_real yt = 0.0, yb = 0.0;
   if (m > 0) x[0] = yt = sign * b[0];
   if (n - 1 > m) x[n - 1] = yb = sign * b[n - 1];
-  int kt = 1, kb = n - 2;
-  for (; kt < m && kb > m; ++kt, --kb) {
-    x[kt] = yt = sign * b[kt] - F->g[kt] * yt;
-    x[kb] = yb = sign * b[kb] - F->g[kb] * yb;
+  /* Both ends side by side for as many rows as the shorter has, with one
+   * loop counter (a step is bound by instructions, not latency: docs/
+   * benchmarks.md, session 12), then the longer end's rest. */
+  const int shorter = m - 1 < n - 2 - m ? m - 1 : n - 2 - m;
+  const int both = shorter > 0 ? shorter : 0;
+  for (int i = 1; i <= both; ++i) {
+    x[i] = yt = sign * b[i] - F->g[i] * yt;
+    x[n - 1 - i] = yb = sign * b[n - 1 - i] - F->g[n - 1 - i] * yb;
   }
-  for (; kt < m; ++kt) x[kt] = yt = sign * b[kt] - F->g[kt] * yt;
-  for (; kb > m; --kb) x[kb] = yb = sign * b[kb] - F->g[kb] * yb;
+  for (int kt = both + 1; kt < m; ++kt) x[kt] = yt = sign * b[kt] - F->g[kt] * yt;
+  for (int kb = n - 2 - both; kb > m; --kb) x[kb] = yb = sign * b[kb] - F->g[kb] * yb;
   const rtb_real xm = (sign * b[m] - F->g[m] * yt - F->gm * yb) * F->inv[m];
   x[m] = xm;
   rtb_real xt = xm, xb = xm;
-  kt = m - 1;
-  kb = m + 1;
-  for (; kt >= 0 && kb < n; --kt, ++kb) {
-    x[kt] = xt = x[kt] * F->inv[kt] - F->w[kt] * xt;
-    x[kb] = xb = x[kb] * F->inv[kb] - F->w[kb] * xb;
+  const int away = m < n - 1 - m ? m : n - 1 - m; /* rows both sides have beyond m */
+  for (int i = 1; i <= away; ++i) {
+    x[m - i] = xt = x[m - i] * F->inv[m - i] - F->w[m - i] * xt;
+    x[m + i] = xb = x[m + i] * F->inv[m + i] - F->w[m + i] * xb;
   }
-  for (; kt >= 0; --kt) x[kt] = xt = x[kt] * F->inv[kt] - F->w[kt] * xt;
-  for (; kb < n; ++kb) x[kb] = xb = x[kb] * F->inv[kb] - F->w[kb] * xb;
+  for (int kt = m - away - 1; kt >= 0; --kt) x[kt] = xt = x[kt] * F->inv[kt] - F->w[kt] * xt;
+  for (int kb = m + away + 1; kb < n; ++kb) x[kb] = xb = x[kb] * F->inv[kb] - F->w[kb] * xb;
 }
 
 /* out = h K u (the chain stiffness of eq. (2) times h); returns nothing. The

@@ -68,11 +68,22 @@ struct Chain {
  * or +inf if anything is non-finite. */
 rtb_real residual(const Chain &ch, const rtb_real *f, const rtb_real *v, const rtb_real *r,
                   rtb_real *H, rtb_real *sq) {
-  rtb_newton_hK_apply(ch.n, ch.hK0, ch.hKr, v, H);
-  rtb_real nrm = 0.0, s2 = 0.0;
-  for (int k = 0; k < ch.n; ++k) {
-    H[k] += f[k] - r[k];
+  const int n = ch.n;
+  const rtb_real hKr = ch.hKr, hK2 = 2.0 * ch.hKr;
+  /* h K v as rtb_newton_hK_apply forms it, then + (f - r): the same bits, one pass. */
+  rtb_real Kv0 = ch.hK0 * v[0];
+  if (n > 1) Kv0 -= hKr * v[1];
+  H[0] = Kv0 + (f[0] - r[0]);
+  rtb_real nrm = fabs(H[0]), s2 = nrm * nrm;
+  for (int k = 1; k < n - 1; ++k) {
+    H[k] = (hK2 * v[k] - hKr * (v[k - 1] + v[k + 1])) + (f[k] - r[k]);
     const rtb_real a = fabs(H[k]);
+    nrm = a > nrm ? a : nrm;
+    s2 += a * a;
+  }
+  if (n > 1) {
+    H[n - 1] = (hK2 * v[n - 1] - hKr * v[n - 2]) + (f[n - 1] - r[n - 1]);
+    const rtb_real a = fabs(H[n - 1]);
     nrm = a > nrm ? a : nrm;
     s2 += a * a;
   }
@@ -88,12 +99,16 @@ rtb_real law_sweep(const Chain &ch, bool *steep, rtb_real *f, rtb_real *v, rtb_r
                    int *budget) {
   const int n = ch.n;
   rtb_real fmax_abs = 0.0;
-  if (!(ch.law.s > 0.0)) { /* eq. (1): one evaluation per cell */
+  if (!(ch.law.s > 0.0)) { /* eq. (1): one evaluation per cell, the choice in the same pass */
     for (int k = 0; k < n; ++k) {
       if (steep[k]) f[k] = rtb_law_eval_v(&ch.law, v[k], &D[k]);
       else v[k] = rtb_law_eval_pow_f(&ch.law, f[k], &D[k]);
+      steep[k] = (k == 0 ? ch.hK0 : 2.0 * ch.hKr) * D[k] > 1.0;
+      const rtb_real a = fabs(f[k]);
+      fmax_abs = a > fmax_abs ? a : fmax_abs;
     }
     *budget -= n;
+    return fmax_abs;
   } else {
     for (int k = 0; k < n; ++k) {
       if (steep[k]) {

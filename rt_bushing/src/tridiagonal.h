@@ -52,12 +52,15 @@ static inline void rtb_stage_matrix(int n, rtb_real h, const rtb_real *D, rtb_re
 
 /* out = K u for the chain stiffness. */
 static inline void rtb_chain_apply(int n, rtb_real Kpa, rtb_real Kr, const rtb_real *u, rtb_real *out) {
-  for (int k = 0; k < n; ++k) {
-    rtb_real s = rtb_chain_diag(k, Kpa, Kr) * u[k];
-    if (k > 0) s -= Kr * u[k - 1];
-    if (k + 1 < n) s -= Kr * u[k + 1];
-    out[k] = s;
-  }
+  if (n < 1) return;
+  /* The end rows peeled so the interior loop has no branch (a step calls
+   * this three times); each row sums in the same order as ever. */
+  const rtb_real K2 = 2.0 * Kr;
+  out[0] = (Kpa + Kr) * u[0];
+  if (n == 1) return;
+  out[0] -= Kr * u[1];
+  for (int k = 1; k < n - 1; ++k) out[k] = K2 * u[k] - Kr * u[k - 1] - Kr * u[k + 1];
+  out[n - 1] = K2 * u[n - 1] - Kr * u[n - 2];
 }
 
 /* Solve K x = rhs in place (K symmetric positive definite). */
