@@ -124,6 +124,7 @@ nlohmann::ordered_json diagnosis_json(const DiagnoseResult &R, const std::vector
                                 {"error_fit", R.extended_error_fit},
                                 {"error_holdout", num(R.extended_error_holdout)},
                                 {"delay", R.extended.delay},
+                                {"delay_lowpass", R.extended.delay_lowpass},
                                 {"offset", R.extended.offset}};
   if (!R.causes.empty()) ext["fitted"] = ext_params_json(R.extended_fit);
   nlohmann::ordered_json recs = nlohmann::ordered_json::array();
@@ -206,7 +207,9 @@ std::string diagnosis_header(const DiagnoseResult &R, const std::vector<Record> 
     for (const Cause &c : R.causes) artefact = artefact || !c.cand.physical;
     if (artefact)
       hi.provenance.push_back("measurement artefact corrected in the data (delay " +
-                              std::to_string(R.extended.delay) + " s, offset " +
+                              std::to_string(R.extended.delay) + " s" +
+                              (R.extended.delay_lowpass ? " as a first-order low-pass" : "") +
+                              ", offset " +
                               std::to_string(R.extended.offset) + "); not part of the element");
   }
   return emit_parameter_header(R.extended.p, hi);

@@ -209,6 +209,9 @@ std::string describe_effect(const Candidate &c, const ExtModel &m) {
                   p.backlash_held != 0.0 ? "held" : "floating");
   else if (c.name == "mullins")
     std::snprintf(b, sizeof b, "Mullins softening mu = %.4g", p.mullins);
+  else if (c.name == "delay" && m.delay_lowpass)
+    std::snprintf(b, sizeof b, "force channel low-passed, first order, time constant %.4g s "
+                  "(corner %.4g Hz)", m.delay, m.delay > 0 ? 1.0 / (6.283185307179586 * m.delay) : 0.0);
   else if (c.name == "delay")
     std::snprintf(b, sizeof b, "force channel delayed by %.4g s", m.delay);
   else if (c.name == "inertia")

@@ -74,7 +74,19 @@ void joint_fits(std::vector<CandidateOutcome> &out, const Current &cur, const Co
     std::vector<Candidate> with = cur.causes;
     with.push_back(co.cand);
     try {
-      co.fit = fit_extended(cx.fit, co.screen.start, combined_spec(with, cx.sc), cx.opt.misfit);
+      const ExtFitSpec spec = combined_spec(with, cx.sc);
+      co.fit = fit_extended(cx.fit, co.screen.start, spec, cx.opt.misfit);
+      if (co.cand.delay) {
+        // The delay's two definitions, a pure lag and a first-order low-pass
+        // (an amplifier's bandwidth), look alike to the screen (both are
+        // -tau dF/dt at tau = 0); the joint fit keeps the one the records
+        // prefer. A pure lag fitted to a low-pass leaves its roll-off,
+        // which a moving mass then took (refgen delay_lowpass).
+        ExtModel other = co.screen.start;
+        other.delay_lowpass = !other.delay_lowpass;
+        const ExtFitResult alt = fit_extended(cx.fit, other, spec, cx.opt.misfit);
+        if (alt.J < co.fit.J) co.fit = alt;
+      }
       co.joint = std::isfinite(co.fit.J);
       if (!co.joint) co.why = "joint fit failed: non-finite misfit";
     } catch (const std::exception &e) {

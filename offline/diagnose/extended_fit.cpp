@@ -8,6 +8,40 @@
 
 namespace rtb {
 
+namespace {
+
+// The force channel as a first-order low-pass of time constant tau, exact
+// for a force held between samples: y_j = a_j y_j-1 + (1 - a_j) F_j,
+// a_j = exp(-h_j / tau), from y_0 = F_0 (the record starts at rest). The
+// sensitivities pass through the same filter (it is linear in F); the
+// delay column is dy/dtau: s_j = a_j s_j-1 + a_j h_j / tau^2 (y_j-1 - F_j).
+void lowpass_channel(const ExtModel &m, const Record &rec, const ExtFitSpec &spec,
+                     const Eigen::VectorXd &Fm, const Eigen::MatrixXd &Jm, Eigen::VectorXd &F,
+                     Eigen::MatrixXd *jac) {
+  const Eigen::Index n = Fm.size(), P = (Eigen::Index)spec.free.size();
+  const double tau = m.delay;
+  double y = Fm[0], s = 0.0;
+  Eigen::RowVectorXd yJ;
+  if (jac) yJ = Jm.row(0);
+  for (Eigen::Index j = 0; j < n; ++j) {
+    if (j > 0) {
+      const double h = rec.t[(size_t)j] - rec.t[(size_t)j - 1], a = std::exp(-h / tau);
+      s = a * s + a * h / (tau * tau) * (y - Fm[j]);
+      y = a * y + (1.0 - a) * Fm[j];
+      if (jac) yJ = a * yJ + (1.0 - a) * Jm.row(j);
+    }
+    F[j] = y + m.offset;
+    if (jac) {
+      jac->row(j).head(P) = yJ;
+      Eigen::Index c = P;
+      if (spec.fit_delay) (*jac)(j, c++) = s;
+      if (spec.fit_offset) (*jac)(j, c) = 1.0;
+    }
+  }
+}
+
+}  // namespace
+
 void predict_extended(const ExtModel &m, const Record &rec, const SimOptions &sim,
                       const ExtFitSpec &spec, Eigen::VectorXd &F, Eigen::MatrixXd *jac,
                       SensitivityCache *cache) {
@@ -18,6 +52,10 @@ void predict_extended(const ExtModel &m, const Record &rec, const SimOptions &si
   const Eigen::Index cols = P + spec.fit_delay + spec.fit_offset;
   F.resize(n);
   if (jac) jac->setZero(n, cols);
+  if (m.delay_lowpass && m.delay > 0.0 && n > 0) {
+    lowpass_channel(m, rec, spec, Fm, Jm, F, jac);
+    return;
+  }
   // Linear interpolation of the model output at t_j - delay.
   Eigen::Index k = 0;
   for (Eigen::Index j = 0; j < n; ++j) {

@@ -2,7 +2,10 @@
 // with any of its physical extensions free, plus two measurement-chain
 // artefacts that act on the predicted force only and never enter the
 // real-time element:
-//   F_pred(t) = F_model(t - delay) + offset.
+//   F_pred(t) = F_model(t - delay) + offset,
+// or, with the second definition of the delay (a load-cell amplifier's
+// bandwidth), F_model through a first-order low-pass of time constant
+// `delay` (its group delay at low frequency) instead of the pure lag.
 #ifndef RTB_OFFLINE_EXTENDED_FIT_H
 #define RTB_OFFLINE_EXTENDED_FIT_H
 
@@ -19,6 +22,7 @@ namespace rtb {
 struct ExtModel {
   rtb_params p{};
   double delay = 0.0;   // [time] force channel lags displacement by `delay` (>= 0)
+  bool delay_lowpass = false;  // the lag is a first-order low-pass of time constant `delay`
   double offset = 0.0;  // [force] constant sensor offset
 };
 
@@ -63,7 +67,10 @@ ExtFitResult fit_extended(const std::vector<Record> &recs, const ExtModel &start
 
 // The records as the element would see them: the model's force-channel
 // artefacts removed, F_corrected(t) = F(t + delay) - offset (linear
-// interpolation; the last `delay` seconds hold the final sample).
+// interpolation; the last `delay` seconds hold the final sample). A
+// low-pass channel is undone by the same shift, its low-frequency
+// equivalent: inverting the filter would amplify the noise by ~2 delay/dt,
+// and the corrected records only start a refit (diagnose stage 5c).
 std::vector<Record> artefact_corrected(const std::vector<Record> &recs, const ExtModel &m);
 
 // sqrt(sum J / sum J0) of a model on records (eq. (27)), and its J, J0.

@@ -13,7 +13,8 @@
 # Sets (default quick): quick = plain + 10 single words + 2 pairs, 2 new words
 # and mains hum on seed 1 (about 15 x 10-60 s); singles = every word of
 # the vocabulary, both clearance forms and plain on seeds 1-2; hard = pairs,
-# new words and out-of-vocabulary on seeds 1-2; all = singles + hard.
+# new words, the low-pass definition of the delay and out-of-vocabulary on
+# seeds 1-2; all = singles + hard.
 # Meant to run in the background: nohup tests/refgen/acceptance.sh > acc.log 2>&1 &
 # Output: DIR/table.txt, DIR/results.jsonl, DIR/CASE/{truth,report}.json and
 # diagnose.log (records deleted unless --keep). Exit status 0 when every case ran.
@@ -48,7 +49,7 @@ while [ $# -gt 0 ]; do
 done
 
 singles="cubic_stiffness asymmetry maxwell viscous backlash backlash_held mullins delay inertia offset softening"
-hard="delay,asymmetry maxwell,offset backlash,cubic_stiffness viscous,cubic_stiffness inertia,backlash
+hard="delay,asymmetry maxwell,offset backlash,cubic_stiffness viscous,cubic_stiffness inertia,backlash delay_lowpass
       slack relaxation_spectrum friction_asymmetry hum drift clipping"
 on_seeds() {  # on_seeds "WORDS" "SEEDS"
   local w s

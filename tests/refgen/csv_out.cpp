@@ -87,6 +87,7 @@ void write_truth_json(const std::string &path, const Scenario &sc,
   o << "]},\n  \"chain\": {\"servo_order\": " << c.servo_order << ", \"servo_hz\": " << c.servo_hz
     << ", \"dt\": " << c.dt << ", \"substeps\": " << c.substeps << ", \"force_noise\": "
     << c.force_noise << ", \"disp_noise\": " << c.disp_noise << ", \"delay\": " << c.delay
+    << ", \"force_lowpass_hz\": " << c.force_lowpass_hz
     << ", \"offset\": " << c.offset << ", \"hum\": " << c.hum
     << ", \"column_style\": " << sc.column_style << "},\n  \"records\": [";
   std::vector<const Samples *> fit, hold;

@@ -13,7 +13,7 @@ namespace refgen {
 const std::vector<std::string> &effect_names() {
   static const std::vector<std::string> names = {
       "none",     "cubic_stiffness", "asymmetry", "maxwell",  "viscous",
-      "backlash", "backlash_held",   "mullins",   "delay",    "inertia",
+      "backlash", "backlash_held",   "mullins",   "delay",    "delay_lowpass", "inertia",
       "offset",   "softening",       "slack",     "relaxation_spectrum",
       "friction_asymmetry",          "hum",       "drift",     "clipping"};
   return names;
@@ -21,6 +21,7 @@ const std::vector<std::string> &effect_names() {
 
 std::string expected_word(const std::string &effect) {
   if (effect == "backlash_held") return "backlash";
+  if (effect == "delay_lowpass") return "delay";
   if (effect == "hum" || effect == "drift" || effect == "clipping") return "unexplained";
   return effect;
 }
@@ -74,6 +75,8 @@ void apply_effect(Scenario &sc, const std::string &e, Rng &rng) {
     s.mullins = rng.uniform(0.2, 0.4);
   else if (e == "delay")
     c.delay = rng.uniform(0.002, 0.006);
+  else if (e == "delay_lowpass")  // the other definition: a load-cell amplifier's bandwidth,
+    c.force_lowpass_hz = 1.0 / (kTwoPi * rng.uniform(0.002, 0.006));  // group delay 2-6 ms
   else if (e == "offset")
     c.offset = rng.sign() * rng.uniform(0.02, 0.05) * Fel;
   else if (e == "softening") {

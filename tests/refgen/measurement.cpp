@@ -110,6 +110,10 @@ Samples run_record(const Specimen &s, const Command &cmd, const Chain &c) {
     F[j + 1] = specimen_force(s, st, drive_of(sv, c, cmd));
     x[j + 1] = sv.x;
   }
+  if (c.force_lowpass_hz > 0.0) {  // the amplifier's first-order low-pass, exact for a held input
+    const double a = std::exp(-kTwoPi * c.force_lowpass_hz * h);
+    for (size_t j = 1; j < F.size(); ++j) F[j] = a * F[j - 1] + (1.0 - a) * F[j];
+  }
   Samples r;
   r.t.resize(n);
   r.x_true.resize(n);

@@ -91,6 +91,7 @@ struct Chain {
   double force_noise = 0.005;  // force noise std / max |F| of the record
   double disp_noise = 0.003;   // displacement noise std / max |x| of the record
   double delay = 0.0;        // force channel lag [s]
+  double force_lowpass_hz = 0.0;  // first-order low-pass of the force channel (amplifier) [Hz], 0 = off
   double offset = 0.0;       // force sensor zero error [N]
   double hum = 0.0;          // 50 Hz mains hum amplitude on the force [N] (+30% at 150 Hz)
   double hum_phase = 0.0;
