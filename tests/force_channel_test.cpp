@@ -120,6 +120,26 @@ TEST(ForceChannel, PureDelaySensitivitiesMatchCentralDifferences) {
   expect_jacobian(m, rec, spec);
 }
 
+TEST(ForceChannel, AVanishingLowPassIsFiniteAndTransparent) {
+  // A fit can drive the time constant towards 0 (log-parametrized): the
+  // force and every sensitivity must stay finite (a NaN reached Eigen's
+  // SVD in the covariance and crashed refgen delay+asymmetry seed 7).
+  const Record rec = sine_record(1e-3, 3.0, 0.5);
+  ExtModel m = paper_model();
+  m.delay = 1e-300;
+  m.delay_lowpass = true;
+  ExtFitSpec spec;
+  spec.free = {P_Kpa, P_C0};
+  spec.fit_delay = true;
+  Eigen::MatrixXd J;
+  const Eigen::VectorXd y = predicted(m, rec, spec, &J);
+  ExtFitSpec none;
+  none.free.clear();
+  const Eigen::VectorXd F = predicted(paper_model(), rec, none);
+  EXPECT_TRUE(J.allFinite());
+  EXPECT_LT((y - F).cwiseAbs().maxCoeff(), 1e-12 * F.cwiseAbs().maxCoeff());
+}
+
 }  // namespace
 }  // namespace rtb
 #endif

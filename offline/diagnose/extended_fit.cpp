@@ -25,8 +25,10 @@ void lowpass_channel(const ExtModel &m, const Record &rec, const ExtFitSpec &spe
   if (jac) yJ = Jm.row(0);
   for (Eigen::Index j = 0; j < n; ++j) {
     if (j > 0) {
-      const double h = rec.t[(size_t)j] - rec.t[(size_t)j - 1], a = std::exp(-h / tau);
-      s = a * s + a * h / (tau * tau) * (y - Fm[j]);
+      const double h = rec.t[(size_t)j] - rec.t[(size_t)j - 1], q = h / tau, a = std::exp(-q);
+      // da/dtau = a q / tau, written so that a tau the fit drives towards 0
+      // gives 0 (its limit), not 0 * inf.
+      s = a * s + (a > 0.0 ? a * q / tau : 0.0) * (y - Fm[j]);
       y = a * y + (1.0 - a) * Fm[j];
       if (jac) yJ = a * yJ + (1.0 - a) * Jm.row(j);
     }

@@ -183,6 +183,9 @@ bool sandwich_covariance(const Eigen::VectorXd &r, const Eigen::MatrixXd &Jw,
   // s_g^2 from record g's residuals with its share of the lost degrees of freedom.
   const Eigen::Index m = r.size(), n = Jw.cols();
   if (m <= n || n == 0 || (Eigen::Index)group.size() != m) return false;
+  // Eigen's SVD leaves its rank undefined on non-finite input (a solve then
+  // reads past its singular values): no figure rather than a crash.
+  if (!r.allFinite() || !Jw.allFinite() || !w.allFinite()) return false;
   const int ng = 1 + *std::max_element(group.begin(), group.end());
   std::vector<double> ss(ng, 0.0), cnt(ng, 0.0);
   double sall = 0.0;
