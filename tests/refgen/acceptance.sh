@@ -104,8 +104,9 @@ for c in $cases; do
       if [ $rc -eq 124 ] || [ $rc -eq 137 ]; then status=timeout; else status="exit$rc"; fi
       failed=1
     }
-  wall=$(awk '{ printf "%.1f", $1 }' "$dir/time.txt")
-  cpu=$(awk '{ printf "%.1f", $2 + $3 }' "$dir/time.txt")
+  # The last line: a crashed diagnosis puts the shell's report before the times.
+  wall=$(tail -n 1 "$dir/time.txt" | awk '{ printf "%.1f", $1 }')
+  cpu=$(tail -n 1 "$dir/time.txt" | awk '{ printf "%.1f", $2 + $3 }')
   python3 "$here/score.py" row "$name" "$dir/truth.json" "$dir/report.json" "$wall" "$cpu" "$status" >> "$results"
   [ $keep -eq 1 ] || rm -f "$dir"/*.csv
   tail -n 1 "$results" | python3 -c 'import json,sys; r=json.loads(sys.stdin.read()); print("  %-30s -> %-20s %s (%.0f s, cpu %.0f s)" % (r["case"], r["cause"], "ok" if r["ok"] else "MISS", r["wall_s"], r["cpu_s"]))'
