@@ -1,11 +1,10 @@
 // plausibility_test.cpp -- the delay check of plausibility.cpp: a fitted
-// delay is refused only when the records' cross-correlation contradicts it,
-// each record's lag weighed by its information on a time shift,
-// sum (dF/dt)^2. Records made with the element itself: a 4.5 ms force
-// delay, and on top a slow Maxwell branch that the checked model lacks. It
-// makes the slow records' force lead the model by more than the delay
-// lags it (the shape error that moved refgen delay+asymmetry seed 8's slow
-// records, where the delay was refused before the weighting).
+// delay is refused only when the records' cross-correlation contradicts it.
+// Records made with the element itself through a 4.5 ms force delay.
+// (Session 12 weighed the records' lags by sum (dF/dt)^2 and reverted it:
+// it let a 1.6 ms "delay" through on the own generator's Maxwell seed 5,
+// whose weighted lag/fitted ratio, 0.55, lies inside the true delays'
+// 0.50-0.90 on refgen; docs/diagnosis_acceptance.md.)
 #ifdef RTB_HAVE_OFFLINE
 #include <gtest/gtest.h>
 
@@ -75,26 +74,6 @@ TEST(DelayPlausibility, ATrueDelayIsNotRefused) {
   ExtModel truth = paper_model();
   truth.delay = kDelay;
   EXPECT_EQ(check(paper_model(), measured_through(truth), kDelay), "");
-}
-
-TEST(DelayPlausibility, ATrueDelayIsNotRefusedWhenTheSlowRecordsMissAnotherEffect) {
-  ExtModel truth = paper_model();
-  truth.delay = kDelay;
-  truth.p.maxwell_k = truth.p.K0;
-  truth.p.maxwell_tau = 0.6;
-  const ExtModel current = paper_model();  // lacks the branch and the delay
-  const std::vector<Record> recs = measured_through(truth);
-  // What makes the case: the slow records alone lead instead of lagging,
-  // and with equal weights per sample the records refuse the delay.
-  const int max_lag = (int)std::ceil(3.0 * kDelay / kDt);
-  double lag_per_sample = 0.0;
-  for (const Record &r : recs) {
-    const double lag = xcorr_lag(r, predicted(current, r), max_lag);
-    if (r.path != "sine_5hz") EXPECT_LT(lag, 0.0) << r.path;
-    lag_per_sample += lag / (double)recs.size();
-  }
-  EXPECT_LT(lag_per_sample, 0.2 * kDelay - kDt);
-  EXPECT_EQ(check(current, recs, kDelay), "");
 }
 
 TEST(DelayPlausibility, AForceThatDoesNotLagRefusesTheDelay) {

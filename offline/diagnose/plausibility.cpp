@@ -58,14 +58,6 @@ std::string offset_contradiction(const ExtModel &fitted, const std::vector<Recor
   return b;
 }
 
-// The records' lags are combined as one least-squares time shift would
-// weigh them: a shift tau changes the force by about -tau dF/dt, so a
-// record's information on tau is sum (dF/dt)^2 (of the predicted force; the
-// measured one is noisy). On a slow record a few ms of delay is a phase of
-// a few thousandths, and any shape the model misses (an asymmetric
-// stiffness, refgen delay+asymmetry seed 8) moves its correlation peak by
-// more than the delay; weighted by sample count, two slow records at the
-// window's edge outvoted the 5 and 15 Hz ones and refused a true delay.
 std::string delay_contradiction(const ExtModel &fitted, const ExtModel &current,
                                 const std::vector<Record> &recs, const MisfitOptions &opt) {
   double lag_sum = 0.0, w_sum = 0.0, dt = 0.0;
@@ -75,12 +67,9 @@ std::string delay_contradiction(const ExtModel &fitted, const ExtModel &current,
     const int max_lag = std::max(3, (int)std::ceil(3.0 * fitted.delay / h));
     ExtModel m = current;
     m.delay = 0.0;
-    const Eigen::VectorXd F = predict(m, r, opt);
-    double info = 0.0; /* sum (dF/dt)^2 */
-    for (Eigen::Index i = 1; i < F.size(); ++i) info += (F[i] - F[i - 1]) * (F[i] - F[i - 1]);
-    info /= h * h;
-    lag_sum += xcorr_lag(r, F, max_lag) * info;
-    w_sum += info;
+    const double lag = xcorr_lag(r, predict(m, r, opt), max_lag);
+    lag_sum += lag * (double)r.t.size();
+    w_sum += (double)r.t.size();
   }
   const double lag = w_sum > 0 ? lag_sum / w_sum : 0.0;
   // The current model has absorbed part of a true delay into its dashpots,

@@ -7,8 +7,7 @@
 // * offset: where a record is at rest at x ~ 0 before it moves, the measured
 //   force is the sensor's zero; the fitted offset must agree with it.
 // * delay: the measured force must lag the current model's prediction by
-//   about the fitted delay (their cross-correlation peak, the records'
-//   lags weighted by their information on a time shift, sum (dF/dt)^2).
+//   about the fitted delay (their cross-correlation peak).
 // * slack: where the fitted model floats free (zero force), the measured
 //   force must be near zero too, on a visible share of the samples.
 #ifndef RTB_OFFLINE_PLAUSIBILITY_H
