@@ -65,16 +65,17 @@ extern "C" {
 /* Types                                                               */
 /* ------------------------------------------------------------------ */
 
-#define RTB_ABI_VERSION 5     /* bumped on any layout change of the structs
+#define RTB_ABI_VERSION 6     /* bumped on any layout change of the structs
                                  (2: `smoothing`, `sat_force`, `sat_disp` took reserved[0..2];
                                   3: slack, backlash_held, fric_asym, spec_* and the
                                   spectrum memory z_spec in rtb_state; fixed-width
                                   integer fields, struct sizes in rtb_info;
                                   4: rtb_step_info.work, the spent work budget;
-                                  5: rtb_settings.max_work, the budget at run time) */
+                                  5: rtb_settings.max_work, the budget at run time;
+                                  6: k2, the quadratic spring, took reserved[0]) */
 #define RTB_MAX_CELLS 32      /* capacity of rtb_state; N = 1 .. RTB_MAX_CELLS */
 #define RTB_DEFAULT_CELLS 15  /* the paper's choice (section 3.4) */
-#define RTB_N_RESERVED 6
+#define RTB_N_RESERVED 5
 #define RTB_MAX_BRANCHES 16  /* capacity of the relaxation spectrum (eight decades) */
 
 /* The scalar: double, or float when compiled with -DRTB_SINGLE (for a
@@ -193,6 +194,11 @@ typedef struct rtb_params {
   rtb_real spec_tau_min;/* fastest branch time, > 0 when spec_k > 0 [time] */
   rtb_real spec_tau_max;/* slowest, >= spec_tau_min; branches log-spaced, two
                            per decade, at most RTB_MAX_BRANCHES    [time] */
+  /* ABI 6 (issue #10), from reserved[0]. */
+  rtb_real k2;          /* quadratic spring: F += k2 xb^2, the other common
+                           definition of a tension/compression asymmetry
+                           (tangent K0 + 2 k2 xb; with k3 the polynomial
+                           static law K0 x + k2 x^2 + k3 x^3) [force/length^2] */
   rtb_real reserved[RTB_N_RESERVED];
 } rtb_params;
 
@@ -257,7 +263,8 @@ typedef struct rtb_params {
   X(spec_k, NONNEG, FIT, "force/length", "relaxation spectrum stiffness")            \
   X(spec_exp, ANY, FIT, "-", "relaxation spectrum weight exponent")                  \
   X(spec_tau_min, NONNEG, SETTING, "time", "relaxation spectrum fastest time")       \
-  X(spec_tau_max, NONNEG, SETTING, "time", "relaxation spectrum slowest time")
+  X(spec_tau_max, NONNEG, SETTING, "time", "relaxation spectrum slowest time")   \
+  X(k2, ANY, FIT, "force/length^2", "quadratic spring (asymmetry)")
 
 /* Numerical settings of the implicit solve. NULL means rtb_settings_default. */
 typedef struct rtb_settings {

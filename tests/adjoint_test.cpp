@@ -60,6 +60,7 @@ TEST_P(AdjointIntegrators, SmoothDataNearTruthWithAllExtensions) {
   p.K0 *= 1.01;  // near the optimum the gradient is small: the hard case for FD
   p.k3 = 50;
   p.k_asym = 100;
+  p.k2 = 60;
   p.maxwell_k = 200;
   p.maxwell_tau = 0.05;
   p.viscous_c = 0.5;

@@ -101,11 +101,12 @@ void expect_jacobian(const ExtModel &m, const Record &rec, const ExtFitSpec &spe
 
 // A 3 Hz record, the delay 4.3 ms (between samples: the pure lag's
 // interpolation is smooth in delay there), Kpa, C0, alpha and delay free.
-void expect_channel_jacobian(bool lowpass) {
+void expect_channel_jacobian(bool lowpass, bool lead = false) {
   const Record rec = sine_record(1e-3, 3.0, 1.0);
   ExtModel m = paper_model();
   m.delay = 4.3e-3;
   m.delay_lowpass = lowpass;
+  m.delay_lead = lead;
   ExtFitSpec spec;
   spec.free = {P_Kpa, P_C0, P_alpha};
   spec.fit_delay = true;
@@ -115,6 +116,29 @@ void expect_channel_jacobian(bool lowpass) {
 TEST(ForceChannel, LowPassSensitivitiesMatchCentralDifferences) { expect_channel_jacobian(true); }
 
 TEST(ForceChannel, PureDelaySensitivitiesMatchCentralDifferences) { expect_channel_jacobian(false); }
+
+// The third definition, a lead of the force (the displacement channel lags).
+TEST(ForceChannel, LeadSensitivitiesMatchCentralDifferences) { expect_channel_jacobian(false, true); }
+
+// A lead is the lag mirrored: F_lead(t) = F(t + d), so shifting the
+// prediction by the lag's 2 d lands on the lag's prediction.
+TEST(ForceChannel, ALeadIsTheLagMirrored) {
+  const Record rec = sine_record(1e-3, 3.0, 1.0);
+  ExtFitSpec none;
+  none.free.clear();
+  ExtModel lag = paper_model(), lead = paper_model();
+  lag.delay = lead.delay = 4e-3;
+  lead.delay_lead = true;
+  const Eigen::VectorXd a = predicted(lag, rec, none), b = predicted(lead, rec, none);
+  const double scale = a.cwiseAbs().maxCoeff();
+  for (Eigen::Index j = 20; j + 20 < a.size(); ++j) ASSERT_NEAR(b[j - 4], a[j + 4], 1e-12 * scale) << j;
+  // And artefact correction undoes it.
+  Record measured = rec;
+  for (Eigen::Index j = 0; j < b.size(); ++j) measured.F[(size_t)j] = b[j];
+  const Record corrected = artefact_corrected({measured}, lead)[0];
+  const Eigen::VectorXd F = predicted(paper_model(), rec, none);
+  for (Eigen::Index j = 20; j + 20 < F.size(); ++j) ASSERT_NEAR(corrected.F[(size_t)j], F[j], 1e-12 * scale) << j;
+}
 
 TEST(ForceChannel, AVanishingLowPassIsFiniteAndTransparent) {
   // A fit can drive the time constant towards 0 (log-parametrized): the

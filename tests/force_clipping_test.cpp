@@ -12,7 +12,7 @@
 #include <string>
 
 #include "offline/diagnose/force_clipping.h"
-#include "offline/io/csv.h"
+#include "measured_records.h"
 
 namespace rtb {
 namespace {
@@ -82,15 +82,10 @@ TEST(ForceClipping, NoisyOrQuantizedUnclippedRecordsAreLeftAlone) {
 // No measured record of ../shared/data is clipped (the detector must not
 // mask real peaks). Skips when the data are absent.
 TEST(ForceClipping, NoMeasuredRecordIsClipped) {
-  const char *env = std::getenv("RTB_DATA_DIR");
-  const std::string dir = env && *env ? env : RTB_SHARED_DATA_DIR;
-  if (!std::filesystem::exists(dir)) GTEST_SKIP() << "measured data " << dir << " absent; skipping";
   std::vector<Record> recs;
-  for (const char *sub : {"friction_damper", "vhb4910"}) {
-    if (!std::filesystem::exists(dir + "/" + sub)) continue;
-    for (const auto &e : std::filesystem::directory_iterator(dir + "/" + sub))
-      if (e.path().extension() == ".csv") recs.push_back(read_record_csv(e.path().string()));
-  }
+  std::string dir;
+  if (!rtb_test::measured_records(&recs, &dir))
+    GTEST_SKIP() << "measured data " << dir << " absent; skipping";
   ASSERT_GE(recs.size(), 50u);
   const std::vector<ClippedRecord> c = mask_force_clipping(recs);
   EXPECT_TRUE(c.empty()) << clipping_text(c, recs.size()) << " first: " << c[0].file;

@@ -1,6 +1,7 @@
-// plausibility_test.cpp -- the delay check of plausibility.cpp: a fitted
-// delay is refused only when the records' cross-correlation contradicts it.
-// Records made with the element itself through a 4.5 ms force delay.
+// plausibility_test.cpp -- checks of plausibility.cpp. The delay: a fitted
+// delay is refused only when the records' cross-correlation contradicts it
+// (records made with the element itself through a 4.5 ms force delay). The
+// softening spring: named only if the fitted elastic law softens.
 // (Session 12 weighed the records' lags by sum (dF/dt)^2 and reverted it:
 // it let a 1.6 ms "delay" through on the own generator's Maxwell seed 5,
 // whose weighted lag/fitted ratio, 0.55, lies inside the true delays'
@@ -80,6 +81,47 @@ TEST(DelayPlausibility, AForceThatDoesNotLagRefusesTheDelay) {
   // 10 ms: at 1 kHz a claim of a few samples is within the lag's resolution.
   const std::string why = check(paper_model(), measured_through(paper_model()), 10e-3);
   EXPECT_NE(why.find("cross-correlation"), std::string::npos) << why;
+}
+
+const Candidate &word_named(const char *name) {
+  for (const Candidate &c : candidate_vocabulary())
+    if (c.name == name) return c;
+  ADD_FAILURE() << "no candidate " << name;
+  return candidate_vocabulary().front();
+}
+
+std::string softening_check(const rtb_params &p) {
+  ExtModel fitted = paper_model();
+  fitted.p = p;
+  const std::vector<Record> recs = {periodic("triangle", 0.25, 1.2, true)};
+  return contradiction(word_named("softening"), fitted, paper_model(), recs,
+                       std::vector<double>(1, 1.0), MisfitOptions());
+}
+
+// The static tangent, K0 + chain + 3 k3 x^2 + (Fs/xs) sech^2(x/xs), from x =
+// 0 to the records' 1.2 mm: the paper's chain is 1/(1/Kpa + N/Kr).
+TEST(SofteningPlausibility, ASpringThatSoftensIsNotRefused) {
+  rtb_params p = paper_model().p;
+  p.sat_force = 100.0;  // initial 500 N/mm on top of K0, saturating by ~0.4 mm
+  p.sat_disp = 0.2;
+  EXPECT_EQ(softening_check(p), "");
+  p.k3 = 150.0;  // softens, then stiffens (an elastomer at large strain)
+  EXPECT_EQ(softening_check(p), "");
+}
+
+TEST(SofteningPlausibility, ATanhThatReshapesAStiffeningCurveIsRefused) {
+  // refgen stiffening_quintic seed 2's fit: K0 -> 0 with the tanh in its
+  // place next to the cubic; the tangent dips by 0.4%, then stiffens.
+  rtb_params p = paper_model().p;
+  p.K0 = 0.0;
+  p.k3 = 558.2;
+  p.sat_force = 1347.0;
+  p.sat_disp = 0.901;
+  const std::string why = softening_check(p);
+  EXPECT_NE(why.find("does not soften"), std::string::npos) << why;
+  // The same spring on its own (no cubic) softens: it is accepted.
+  p.k3 = 0.0;
+  EXPECT_EQ(softening_check(p), "");
 }
 
 }  // namespace

@@ -14,6 +14,7 @@
 #include <string>
 
 #include "refgen.h"
+#include "specimen_model.h"
 #ifdef RTB_HAVE_OFFLINE
 #include "offline/rtb_offline.h"
 #include "temp_dir.h"
@@ -88,6 +89,49 @@ TEST(RefgenIntegration, RelaxedForceIsTheStaticLaw) {
   const double Fs = s.K0 * x + x / (1.0 / s.Kpa + s.N / s.Kr);
   EXPECT_NEAR(r.F_clean.back() / Fs, 1.0, 1e-7);
   EXPECT_NEAR(static_force(s, x) / Fs, 1.0, 1e-15);
+}
+
+// The other definitions of the elastic words (session 13): the relaxed force
+// carries each closed form on top of the static law.
+TEST(RefgenEffects, OtherElasticDefinitionsAreTheirClosedForms) {
+  Specimen base;
+  base.N = 5;
+  base.alpha = 0.9;
+  const double x = 0.8, F0 = static_force(base, x);
+  auto relaxed = [&](const Specimen &s) {
+    const Samples r = run_record(s, ramp_and_hold(x, 0.2, 3.0), clean_chain(5));
+    return r.F_clean.back();
+  };
+  Specimen q = base;
+  q.quad = -300.0;
+  EXPECT_NEAR(relaxed(q) / (F0 - 300.0 * x * x), 1.0, 1e-7);
+  Specimen p5 = base;
+  p5.quintic = 200.0;
+  EXPECT_NEAR(relaxed(p5) / (F0 + 200.0 * std::pow(x, 5)), 1.0, 1e-7);
+  Specimen th = base;
+  th.soft_k = 600.0;
+  th.soft_x = 0.2;
+  th.soft_tanh = true;
+  EXPECT_NEAR(relaxed(th) / (F0 + 600.0 * 0.2 * std::tanh(x / 0.2)), 1.0, 1e-7);
+}
+
+// The erf-shaped Mullins loss: on reloading to half the prior maximum the
+// K0 path has lost mu erf(2 (1 - 1/4)) = 0.987 mu of its stiffness (the
+// quadratic definition: 0.75 mu).
+TEST(RefgenEffects, ErfMullinsLossIsNearlyUniformBelowThePriorMaximum) {
+  Specimen s;
+  s.Kpa = 1e-3;  // the chain carries nothing: the force is the K0 path
+  s.mullins = 0.3;
+  s.mullins_erf = true;
+  double dF = 0.0;
+  const double F = elastic_force(s, 1.0, 0.5, 0.0, 1.0, &dF);
+  EXPECT_NEAR(F / (s.K0 * 0.5 + 1e-3 * 0.5), 1.0 - 0.3 * std::erf(1.5), 1e-6);
+  // The slope by central differences.
+  double d1 = 0.0, d2 = 0.0;
+  const double h = 1e-6;
+  const double Fp = elastic_force(s, 1.0, 0.5 + h, 0.0, 1.0, &d1);
+  const double Fm = elastic_force(s, 1.0, 0.5 - h, 0.0, 1.0, &d2);
+  EXPECT_NEAR(dF, (Fp - Fm) / (2 * h), 1e-5 * std::fabs(dF));
 }
 
 TEST(RefgenIntegration, NearFrictionTangentsAreTheStsOnes) {
@@ -218,6 +262,37 @@ TEST(RefgenChain, DelayShiftsTheForceChannelOnly) {
   const Samples b = run_record(s, cmd, c);
   EXPECT_EQ(max_abs_diff(a.x_true, b.x_true), 0.0);
   for (size_t k = 10; k < a.F_clean.size(); ++k) ASSERT_NEAR(b.F_clean[k], a.F_clean[k - 4], 1e-9);
+}
+
+TEST(RefgenChain, DisplacementDelayShiftsTheDisplacementChannelOnly) {
+  Specimen s;
+  Chain c = clean_chain();
+  const Command cmd = sine(0.5, 3.0, 1.0);
+  const Samples a = run_record(s, cmd, c);
+  c.disp_delay = 0.003;
+  const Samples b = run_record(s, cmd, c);
+  EXPECT_EQ(max_abs_diff(a.F_clean, b.F_clean), 0.0);
+  for (size_t k = 10; k < a.x_true.size(); ++k) ASSERT_NEAR(b.x_true[k], a.x_true[k - 3], 1e-9);
+}
+
+// Glitches: isolated samples of the recorded force only, at the set rate.
+TEST(RefgenChain, SpikesAreIsolatedSamplesOfTheRecordedForce) {
+  Specimen s;
+  Chain c = clean_chain();
+  const Command cmd = sine(0.5, 3.0, 4.0);
+  const Samples a = run_record(s, cmd, c);
+  c.spikes = 50.0;
+  c.spike_rate = 0.005;
+  const Samples b = run_record(s, cmd, c);
+  EXPECT_EQ(max_abs_diff(a.F_clean, b.F_clean), 0.0);
+  long off = 0;
+  for (size_t k = 0; k < a.F.size(); ++k)
+    if (b.F[k] != a.F[k]) {
+      ++off;
+      EXPECT_GE(std::fabs(b.F[k] - a.F[k]), 25.0 - 1e-9);
+      EXPECT_LE(std::fabs(b.F[k] - a.F[k]), 50.0 + 1e-9);
+    }
+  EXPECT_NEAR((double)off / (double)a.F.size(), 0.005, 0.0025);
 }
 
 TEST(RefgenScenario, SeedFixesTheSpecimenAndEffectsOnlyAddTheirOwn) {

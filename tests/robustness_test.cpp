@@ -40,6 +40,7 @@ rtb_params defaults(int model = RTB_MODEL_RT) {
 rtb_params with_extensions(rtb_params p) {
   p.k3 = 40.0;
   p.k_asym = 150.0;
+  p.k2 = 30.0;
   p.maxwell_k = 250.0;
   p.maxwell_tau = 0.03;
   p.viscous_c = 1.5;
@@ -200,6 +201,7 @@ const Field kFields[] = {
     {"Ff", &rtb_params::Ff},
     {"k3", &rtb_params::k3},
     {"k_asym", &rtb_params::k_asym},
+    {"k2", &rtb_params::k2},
     {"maxwell_k", &rtb_params::maxwell_k},
     {"maxwell_tau", &rtb_params::maxwell_tau},
     {"viscous_c", &rtb_params::viscous_c},
@@ -800,11 +802,11 @@ TEST(RobustInspect, Info) {
 // rtb_state_init itself calls): with every dashpot force zero, Kpa and the N
 // springs Kr are in series and carry the same force T = x0 / (1/Kpa + N/Kr);
 // the last spring ties to ground, so y_k = (N - k) T / Kr (k = 0 .. N-1), and
-// F = K0 x0 + T + k3 x0^3 + k_asym |x0| + sat_force tanh(x0 / sat_disp).
+// F = K0 x0 + T + k2 x0^2 + k3 x0^3 + k_asym |x0| + sat_force tanh(x0 / sat_disp).
 double relaxed_force(const rtb_params &p, double x0) {
   const double T = x0 / (1.0 / p.Kpa + p.cells / p.Kr);
   const double sat = p.sat_force > 0.0 ? p.sat_force * std::tanh(x0 / p.sat_disp) : 0.0;
-  return p.K0 * x0 + T + p.k3 * x0 * x0 * x0 + p.k_asym * std::fabs(x0) + sat;
+  return p.K0 * x0 + T + p.k2 * x0 * x0 + p.k3 * x0 * x0 * x0 + p.k_asym * std::fabs(x0) + sat;
 }
 
 void expect_relaxed_state(const rtb_params &p, const rtb_state &s, double x0) {
@@ -823,6 +825,7 @@ TEST(RobustInspect, InitAtOffsetGivesStaticForce) {
       if (variant == 1) {
         p.k3 = 40.0;
         p.k_asym = 150.0;
+        p.k2 = -25.0;
       }
       if (variant == 2) {
         p = with_extensions(p);

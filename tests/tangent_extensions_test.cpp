@@ -117,6 +117,7 @@ TEST(TangentExtensions, AllTogetherWithStsToo) {
     p.sat_force = 300.0;
     p.sat_disp = 0.3;
     p.k3 = 20.0;
+    p.k2 = 40.0;
     p.maxwell_k = 200.0;
     p.maxwell_tau = 0.02;
     SCOPED_TRACE(model);

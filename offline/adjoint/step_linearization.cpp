@@ -126,6 +126,7 @@ ForceLin force_lin(const StepView &v, const rtb_spectrum &sp, bool with_inertia)
   const rtb_force_lin &f = L.f;
   L.g[P_K0] = f.d_K0;
   L.g[P_Kpa] = f.d_Kpa;
+  L.g[P_k2] = f.d_k2;
   L.g[P_k3] = f.d_k3;
   L.g[P_k_asym] = f.d_k_asym;
   L.g[P_maxwell_k] = f.d_maxwell_k;

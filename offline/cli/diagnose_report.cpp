@@ -94,6 +94,13 @@ nlohmann::ordered_json diagnosis_json(const DiagnoseResult &R, const std::vector
                     {"level_bottom", c.level_bottom},
                     {"samples", c.samples}});
   j["clipping"] = clip;
+  nlohmann::ordered_json spikes = nlohmann::ordered_json::array();
+  for (const SpikedRecord &s : R.spikes)
+    spikes.push_back({{"file", s.file},
+                      {"samples", s.spikes},
+                      {"largest", s.largest},
+                      {"largest_sigmas", s.largest_sigmas}});
+  j["spikes"] = spikes;
   j["verdict"] = R.verdict;
   j["physical"] = R.causes.empty() || R.causes.front().cand.physical;
   j["noise_floor"] = {{"error_fit", R.floor.error_fit},
@@ -125,6 +132,7 @@ nlohmann::ordered_json diagnosis_json(const DiagnoseResult &R, const std::vector
                                 {"error_holdout", num(R.extended_error_holdout)},
                                 {"delay", R.extended.delay},
                                 {"delay_lowpass", R.extended.delay_lowpass},
+                                {"delay_lead", R.extended.delay_lead},
                                 {"offset", R.extended.offset}};
   if (!R.causes.empty()) ext["fitted"] = ext_params_json(R.extended_fit);
   nlohmann::ordered_json recs = nlohmann::ordered_json::array();
@@ -209,6 +217,7 @@ std::string diagnosis_header(const DiagnoseResult &R, const std::vector<Record> 
       hi.provenance.push_back("measurement artefact corrected in the data (delay " +
                               std::to_string(R.extended.delay) + " s" +
                               (R.extended.delay_lowpass ? " as a first-order low-pass" : "") +
+                              (R.extended.delay_lead ? " of the displacement channel" : "") +
                               ", offset " +
                               std::to_string(R.extended.offset) + "); not part of the element");
   }

@@ -166,6 +166,7 @@ ExtFitSpec combined_spec(const std::vector<Candidate> &cs, const DataScales &s) 
   }
   spec.scale[P_k3] = 0.1 * s.Fmax / (s.Xmax * s.Xmax * s.Xmax);
   spec.scale[P_k_asym] = 0.1 * s.Ksec;
+  spec.scale[P_k2] = 0.1 * s.Ksec / s.Xmax;
   spec.scale[P_spec_exp] = 0.3;
   // Step unit of the sizes optimized linearly from 0 (param_transform.h).
   for (ParamId id : spec.free)
@@ -174,6 +175,26 @@ ExtFitSpec combined_spec(const std::vector<Candidate> &cs, const DataScales &s) 
   spec.delay_scale = 10.0 * s.dt;
   spec.offset_scale = 0.01 * s.Fmax;
   return spec;
+}
+
+bool other_definition(const Candidate &c, const ExtModel &start, const DataScales &s,
+                      Candidate *alt, ExtModel *alt_start) {
+  *alt = c;
+  *alt_start = start;
+  if (c.delay && start.delay_lead) return false;  // a lead has one definition
+  if (c.delay) {
+    alt_start->delay_lowpass = !start.delay_lowpass;
+    return true;
+  }
+  if (c.name != "asymmetry") return false;
+  const bool to_quadratic = c.variant.empty();
+  alt->extra = {to_quadratic ? P_k2 : P_k_asym};
+  alt->variant = to_quadratic ? "quadratic" : "";
+  const double x = 2.0 / 3.0 * s.Xmax;  // k_asym x = k2 x^2 there
+  rtb_params &p = alt_start->p;
+  if (to_quadratic) p.k2 = p.k_asym / x, p.k_asym = 0.0;
+  else p.k_asym = std::max(-0.9 * p.K0, std::min(0.9 * p.K0, p.k2 * x)), p.k2 = 0.0;
+  return true;
 }
 
 double extra_start_value(ParamId id, const DataScales &s) {
@@ -197,6 +218,9 @@ std::string describe_effect(const Candidate &c, const ExtModel &m) {
   if (c.name == "cubic_stiffness")
     std::snprintf(b, sizeof b, "cubic stiffness k3 = %.4g (%s)", p.k3,
                   p.k3 >= 0 ? "progressive" : "degressive");
+  else if (c.name == "asymmetry" && c.variant == "quadratic")
+    std::snprintf(b, sizeof b, "asymmetry, quadratic k2 = %.4g (tangent stiffness K0 %+.4g x)",
+                  p.k2, 2.0 * p.k2);
   else if (c.name == "asymmetry")
     std::snprintf(b, sizeof b, "asymmetry k_asym = %.4g (tension %.4g, compression %.4g)", p.k_asym,
                   p.K0 + p.k_asym, p.K0 - p.k_asym);
@@ -212,6 +236,8 @@ std::string describe_effect(const Candidate &c, const ExtModel &m) {
   else if (c.name == "delay" && m.delay_lowpass)
     std::snprintf(b, sizeof b, "force channel low-passed, first order, time constant %.4g s "
                   "(corner %.4g Hz)", m.delay, m.delay > 0 ? 1.0 / (6.283185307179586 * m.delay) : 0.0);
+  else if (c.name == "delay" && m.delay_lead)
+    std::snprintf(b, sizeof b, "displacement channel delayed by %.4g s (the force leads it)", m.delay);
   else if (c.name == "delay")
     std::snprintf(b, sizeof b, "force channel delayed by %.4g s", m.delay);
   else if (c.name == "inertia")

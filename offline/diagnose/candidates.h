@@ -74,6 +74,22 @@ bool candidates_conflict(const Candidate &a, const Candidate &b);
 ExtFitSpec candidate_spec(const Candidate &c, const DataScales &s);
 ExtFitSpec combined_spec(const std::vector<Candidate> &cs, const DataScales &s);
 
+// The word's other definition, when it has one the screen cannot tell apart
+// (both look alike at zero size): the joint fit tries both and keeps the one
+// the records prefer (cause_round.cpp).
+// * delay: a pure lag of the force channel, or its first-order low-pass (an
+//   amplifier's bandwidth); same parameter, ExtModel::delay_lowpass toggled.
+//   A lead of the force (the displacement channel lags; the screen's sign
+//   says which) has no other definition.
+// * asymmetry: k_asym |xb| (tension and compression stiffness differ: a kink
+//   at 0), or k2 xb^2 (a quadratic term: the tangent changes linearly with
+//   xb); the alternative is started where it matches the first's force
+//   k_asym |x| at the stroke's two thirds.
+// Returns false when c has no other definition; else *alt (variant set) and
+// *alt_start (from `start`, the screen's start for c).
+bool other_definition(const Candidate &c, const ExtModel &start, const DataScales &s,
+                      Candidate *alt, ExtModel *alt_start);
+
 // One line describing the fitted effect, e.g. "backlash of 0.0312".
 std::string describe_effect(const Candidate &c, const ExtModel &m);
 

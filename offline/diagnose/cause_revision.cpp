@@ -47,7 +47,7 @@ bool refit_from_sts(const Current &cur, const Context &cx, ExtFitResult &fit) {
 // plain element's.
 void switch_off(const Candidate &c, ExtModel &m) {
   for (ParamId id : c.extra) param_ref(m.p, id) = 0.0;
-  if (c.delay) m.delay = 0.0, m.delay_lowpass = false;
+  if (c.delay) m.delay = 0.0, m.delay_lowpass = false, m.delay_lead = false;
   if (c.offset) m.offset = 0.0;
   if (c.name == "slack") m.p.slack = 0.0;
   if (c.name == "backlash") m.p.backlash_held = 0.0;

@@ -76,16 +76,20 @@ void joint_fits(std::vector<CandidateOutcome> &out, const Current &cur, const Co
     try {
       const ExtFitSpec spec = combined_spec(with, cx.sc);
       co.fit = fit_extended(cx.fit, co.screen.start, spec, cx.opt.misfit);
-      if (co.cand.delay) {
-        // The delay's two definitions, a pure lag and a first-order low-pass
-        // (an amplifier's bandwidth), look alike to the screen (both are
-        // -tau dF/dt at tau = 0); the joint fit keeps the one the records
-        // prefer. A pure lag fitted to a low-pass leaves its roll-off,
-        // which a moving mass then took (refgen delay_lowpass).
-        ExtModel other = co.screen.start;
-        other.delay_lowpass = !other.delay_lowpass;
-        const ExtFitResult alt = fit_extended(cx.fit, other, spec, cx.opt.misfit);
-        if (alt.J < co.fit.J) co.fit = alt;
+      // A word with two definitions the screen cannot tell apart (a delay's
+      // pure lag and low-pass are both -tau dF/dt at tau = 0; an asymmetry's
+      // |x| and x^2 terms correlate): the joint fit keeps the one the records
+      // prefer. The wrong one leaves a residual that a second word then took
+      // (refgen delay_lowpass: a moving mass; asymmetry_quadratic: a
+      // friction asymmetry, 3 of 4 seeds).
+      Candidate alt;
+      ExtModel alt_start;
+      if (other_definition(co.cand, co.screen.start, cx.sc, &alt, &alt_start)) {
+        std::vector<Candidate> with_alt = cur.causes;
+        with_alt.push_back(alt);
+        const ExtFitResult fit_alt =
+            fit_extended(cx.fit, alt_start, combined_spec(with_alt, cx.sc), cx.opt.misfit);
+        if (fit_alt.J < co.fit.J) co.fit = fit_alt, co.cand = alt;
       }
       co.joint = std::isfinite(co.fit.J);
       if (!co.joint) co.why = "joint fit failed: non-finite misfit";

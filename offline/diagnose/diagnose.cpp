@@ -165,9 +165,11 @@ void report(const Current &cur, const Context &cx, DiagnoseResult &R) {
   R.residual_above_floor = above_floor(cur, R, opt);
   if (R.residual_above_floor)
     R.signature = diag::residual_signature(R.extended, cx.all, R.residuals, opt.misfit);
-  // Clipped records: what the model misses there is the rig, not a word.
+  // Clipped or spiked records: what the model misses there is the rig, not
+  // a word.
+  const bool rig = !R.clipping.empty() || !R.spikes.empty();
   R.cause = !R.causes.empty() ? R.causes.front().cand.name
-                              : (R.residual_above_floor || !R.clipping.empty() ? "unexplained" : "none");
+                              : (R.residual_above_floor || rig ? "unexplained" : "none");
   R.gain = 1.0 - R.extended_error_holdout / R.baseline_error_holdout;
   R.verdict = diag::verdict_text(R);
 }
@@ -182,6 +184,7 @@ DiagnoseResult diagnose(const std::vector<Record> &fit_in, const std::vector<Rec
   std::vector<Record> both = concat(fit_in, holdout_in);
   R.denoise = denoise_displacement(both);
   R.clipping = mask_force_clipping(both);
+  R.spikes = mask_force_spikes(both);
   const std::vector<Record> fit(both.begin(), both.begin() + (long)fit_in.size());
   const std::vector<Record> holdout(both.begin() + (long)fit_in.size(), both.end());
   R.has_holdout = !holdout.empty();

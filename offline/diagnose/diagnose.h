@@ -6,7 +6,8 @@
 //                 (displacement_noise.h: robust velocity and acceleration);
 //                 samples where the force channel saturated leave the misfit
 //                 (force_clipping.h), and the verdict names the saturation
-//                 instead of a cause fitted to the partial loops.
+//                 instead of a cause fitted to the partial loops; so do
+//                 isolated one-sample spikes (force_spikes.h).
 // 1. baseline     plain RT on the fit records (STS start, trust region).
 // 2. noise floor  the white-noise level of the residual, estimated from the
 //                 data (noise_floor.h): how small the residual can get.
@@ -59,6 +60,7 @@
 #include "diagnose/candidates.h"
 #include "diagnose/displacement_noise.h"
 #include "diagnose/force_clipping.h"
+#include "diagnose/force_spikes.h"
 #include "diagnose/noise_floor.h"
 #include "diagnose/residual_analysis.h"
 #include "diagnose/screen.h"
@@ -197,6 +199,7 @@ struct DiagnoseResult {
   bool has_holdout = false;
   DisplacementDenoise denoise; // stage 0's decision
   std::vector<ClippedRecord> clipping;  // records whose force channel saturated
+  std::vector<SpikedRecord> spikes;     // records with one-sample glitches
   NoiseFloor floor;            // of the baseline residual
   std::vector<RecordResiduals> residuals;
   std::vector<CandidateOutcome> candidates;  // every round's

@@ -54,14 +54,16 @@ void predict_extended(const ExtModel &m, const Record &rec, const SimOptions &si
   const Eigen::Index cols = P + spec.fit_delay + spec.fit_offset;
   F.resize(n);
   if (jac) jac->setZero(n, cols);
-  if (m.delay_lowpass && m.delay > 0.0 && n > 0) {
+  if (m.delay_lowpass && !m.delay_lead && m.delay > 0.0 && n > 0) {
     lowpass_channel(m, rec, spec, Fm, Jm, F, jac);
     return;
   }
-  // Linear interpolation of the model output at t_j - delay.
+  // Linear interpolation of the model output at t_j - shift (a lag) or
+  // t_j + delay (a lead: shift = -delay).
+  const double shift = m.delay_lead ? -m.delay : m.delay;
   Eigen::Index k = 0;
   for (Eigen::Index j = 0; j < n; ++j) {
-    const double u = rec.t[(size_t)j] - m.delay;
+    const double u = rec.t[(size_t)j] - shift;
     double val, slope = 0.0;
     if (m.delay == 0.0) {
       val = Fm[j];
@@ -85,7 +87,7 @@ void predict_extended(const ExtModel &m, const Record &rec, const SimOptions &si
     F[j] = val + m.offset;
     if (jac) {
       Eigen::Index c = P;
-      if (spec.fit_delay) (*jac)(j, c++) = -slope;
+      if (spec.fit_delay) (*jac)(j, c++) = m.delay_lead ? slope : -slope;
       if (spec.fit_offset) (*jac)(j, c) = 1.0;
     }
   }
@@ -285,11 +287,12 @@ std::vector<Record> artefact_corrected(const std::vector<Record> &recs, const Ex
     const std::vector<double> &t = recs[r].t, &F = recs[r].F;
     const size_t n = t.size();
     size_t k = 0;
+    const double shift = m.delay_lead ? -m.delay : m.delay;
     for (size_t j = 0; j < n; ++j) {
-      const double u = t[j] + m.delay;
+      const double u = t[j] + shift;
       while (k + 1 < n && t[k + 1] <= u) ++k;
       const double w = k + 1 < n ? (u - t[k]) / (t[k + 1] - t[k]) : 0.0;
-      const double Fu = k + 1 < n ? F[k] + w * (F[k + 1] - F[k]) : F[n - 1];
+      const double Fu = u <= t[0] ? F[0] : (k + 1 < n ? F[k] + w * (F[k + 1] - F[k]) : F[n - 1]);
       out[r].F[j] = Fu - m.offset;
     }
   }

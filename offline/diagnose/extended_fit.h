@@ -23,6 +23,8 @@ struct ExtModel {
   rtb_params p{};
   double delay = 0.0;   // [time] force channel lags displacement by `delay` (>= 0)
   bool delay_lowpass = false;  // the lag is a first-order low-pass of time constant `delay`
+  bool delay_lead = false;     // the force leads by `delay` instead: the displacement
+                               // channel lags (a filtered or late position sensor)
   double offset = 0.0;  // [force] constant sensor offset
 };
 

@@ -10,6 +10,8 @@
 //   about the fitted delay (their cross-correlation peak).
 // * slack: where the fitted model floats free (zero force), the measured
 //   force must be near zero too, on a visible share of the samples.
+// * softening: the fitted static elastic law must soften (its tangent drop by
+//   5% or more) somewhere over the measured displacements.
 #ifndef RTB_OFFLINE_PLAUSIBILITY_H
 #define RTB_OFFLINE_PLAUSIBILITY_H
 

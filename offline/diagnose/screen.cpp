@@ -196,8 +196,10 @@ CandidateScreen screen_one(const Candidate &c, int variant, const ExtModel &m,
     param_ref(s.start.p, id) = v;
   }
   if (c.delay) {
-    s.plausible = s.value > 0.0;  // the force channel lags, by definition
-    s.start.delay = s.value > 0.0 ? s.value : 2.0 * sc.dt;
+    // A lag of the force channel (value > 0), or a lead: the displacement
+    // channel lags (joint_fits tries the other definitions).
+    s.start.delay = s.value != 0.0 ? std::fabs(s.value) : 2.0 * sc.dt;
+    s.start.delay_lead = s.value < 0.0;
   }
   if (c.offset) s.start.offset = m.offset + s.value;
   return s;

@@ -23,8 +23,11 @@ std::string pct(double e) {
 std::string verdict_text(const DiagnoseResult &R) {
   std::string v = R.imposed ? "imposed causes (what-if, not selected): " : "cause: ";
   const std::string clipped = clipping_text(R.clipping, R.extended_records.size());
+  const std::string spiked = spikes_text(R.spikes, R.extended_records.size());
   if (R.causes.empty() && !clipped.empty()) {
-    v += "unexplained (" + clipped + ")";
+    v += "unexplained (" + clipped + (spiked.empty() ? "" : "; " + spiked) + ")";
+  } else if (R.causes.empty() && !spiked.empty()) {
+    v += "unexplained (" + spiked + ")";
   } else if (R.causes.empty() && R.cause == "unexplained") {
     char b[200];
     std::snprintf(b, sizeof b, "unexplained (residual %.1fx the noise floor of %s; no candidate removes it): ",
@@ -60,6 +63,7 @@ std::string verdict_text(const DiagnoseResult &R) {
          pct(R.baseline_error_holdout_trimmed) + " -> " + pct(R.extended_error_holdout_trimmed) +
          ": the rise is in a few samples";
   if (!R.causes.empty() && !clipped.empty()) v += "; and " + clipped;
+  if (!R.causes.empty() && !spiked.empty()) v += "; and " + spiked;
   if (!R.causes.empty() && R.residual_above_floor) {
     const double ratio = R.extended_error_holdout / std::max(R.floor.error_holdout, 1e-300);
     // A low-passed force (real-data preprocessing) has no white noise left:

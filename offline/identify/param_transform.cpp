@@ -21,6 +21,7 @@ Kind kind_of(ParamId id, double cap) {
     case P_spec_k:
     case P_fric_asym: return Kind::Ramp;
     case P_alpha: return Kind::Alpha;
+    case P_k2:
     case P_k3:
     case P_k_asym:
     case P_spec_exp: return Kind::Linear;

@@ -4,7 +4,8 @@
  * differentiates, so the two cannot drift apart.
  *
  *   F = K0 eta(xb) xb + Kpa (xb - y1)                      eq. (11), Mullins eta
- *     + k3 xb^3 + k_asym |xb| + sat_force tanh(xb/sat_disp)  elastic extensions
+ *     + k2 xb^2 + k3 xb^3 + k_asym |xb|                      elastic extensions
+ *     + sat_force tanh(xb/sat_disp)
  *     + maxwell_k (xb - z) + sum_j k_j (xb - z_j)            Maxwell branch, spectrum
  *     + viscous_c (xb - xb_old)/dt                           linear dashpot
  * (the inertia term m a acts on the input x and is added by the step).
@@ -91,7 +92,7 @@ typedef struct rtb_force_lin {
   rtb_real d_xb_old;   /* through the linear dashpot */
   rtb_real d_xbmax;    /* through the Mullins memory (prior max |xb|) */
   /* dF/d(parameter) */
-  rtb_real d_K0, d_Kpa, d_k3, d_k_asym, d_maxwell_k, d_viscous_c, d_mullins;
+  rtb_real d_K0, d_Kpa, d_k2, d_k3, d_k_asym, d_maxwell_k, d_viscous_c, d_mullins;
   rtb_real d_sat_force, d_sat_disp, d_spec_k, d_spec_exp;
 } rtb_force_lin;
 
@@ -117,15 +118,16 @@ static inline void rtb_force_eval(const rtb_params *p, rtb_real xb, rtb_real xb_
   }
   const rtb_real v = (xb - xb_old) / dt;
 
-  L->F = p->K0 * eta * xb + p->Kpa * (xb - y1) + p->k3 * xb * xb * xb + p->k_asym * ax +
+  L->F = p->K0 * eta * xb + p->Kpa * (xb - y1) + p->k2 * xb * xb + p->k3 * xb * xb * xb + p->k_asym * ax +
          p->sat_force * th + p->maxwell_k * (xb - z) + p->spec_k * Fsp + p->viscous_c * v;
-  L->d_xb = p->K0 * (eta + xb * deta_dxb) + p->Kpa + 3.0 * p->k3 * xb * xb + p->k_asym * sgn +
+  L->d_xb = p->K0 * (eta + xb * deta_dxb) + p->Kpa + 2.0 * p->k2 * xb + 3.0 * p->k3 * xb * xb + p->k_asym * sgn +
             (xs > 0.0 ? p->sat_force / xs * sech2 : 0.0) + p->maxwell_k +
             (sp->M > 0 ? p->spec_k : 0.0) + p->viscous_c / dt;
   L->d_xb_old = -p->viscous_c / dt;
   L->d_xbmax = p->K0 * xb * deta_dm;
   L->d_K0 = eta * xb;
   L->d_Kpa = xb - y1;
+  L->d_k2 = xb * xb;
   L->d_k3 = xb * xb * xb;
   L->d_k_asym = ax;
   L->d_maxwell_k = xb - z;

@@ -160,7 +160,7 @@ extern "C" rtb_real rtb_static_force(const rtb_params *p, rtb_real x) {
   /* All dashpots relaxed: Kpa and N springs Kr in series, parallel to K0. */
   const rtb_real chain = 1.0 / (1.0 / p->Kpa + p->cells / p->Kr);
   const rtb_real sat = p->sat_disp > 0.0 ? p->sat_force * tanh(x / p->sat_disp) : 0.0;
-  return p->K0 * x + chain * x + p->k3 * x * x * x + p->k_asym * fabs(x) + sat;
+  return p->K0 * x + chain * x + p->k2 * x * x + p->k3 * x * x * x + p->k_asym * fabs(x) + sat;
 }
 
 extern "C" int rtb_cell_states(const rtb_state *s, rtb_real *out, int cap) {

@@ -6,15 +6,18 @@
 # summary "single: a/b, combined/new/out-of-vocabulary: c/d, wrong physical
 # names: e".
 #
-#   tests/refgen/acceptance.sh [--set quick|singles|hard|all] [--cases "E:S ..."]
+#   tests/refgen/acceptance.sh [--set quick|singles|hard|definitions|all] [--cases "E:S ..."]
 #                              [--duration S] [--timeout S] [--out DIR]
 #                              [--build DIR] [--keep] [-- DIAGNOSE_OPTIONS...]
 #
 # Sets (default quick): quick = plain + 10 single words + 2 pairs, 2 new words
 # and mains hum on seed 1 (about 15 x 10-60 s); singles = every word of
 # the vocabulary, both clearance forms and plain on seeds 1-2; hard = pairs,
-# new words, the low-pass definition of the delay and out-of-vocabulary on
-# seeds 1-2; all = singles + hard.
+# new words, the low-pass definition of the delay and out-of-vocabulary
+# (hum, drift, clipping, force spikes) on seeds 1-2; definitions = other
+# definitions of four words (quadratic asymmetry, tanh softening, an
+# erf-shaped Mullins loss, a fifth-order stiffening) on seeds 1-2; all =
+# singles + hard + definitions.
 # Meant to run in the background: nohup tests/refgen/acceptance.sh > acc.log 2>&1 &
 # Output: DIR/table.txt, DIR/results.jsonl, DIR/CASE/{truth,report}.json and
 # diagnose.log (records deleted unless --keep). Exit status 0 when every case ran.
@@ -50,7 +53,8 @@ done
 
 singles="cubic_stiffness asymmetry maxwell viscous backlash backlash_held mullins delay inertia offset softening"
 hard="delay,asymmetry maxwell,offset backlash,cubic_stiffness viscous,cubic_stiffness inertia,backlash delay_lowpass
-      slack relaxation_spectrum friction_asymmetry hum drift clipping"
+      slack relaxation_spectrum friction_asymmetry hum drift clipping spikes"
+definitions="asymmetry_quadratic softening_tanh mullins_erf stiffening_quintic"
 on_seeds() {  # on_seeds "WORDS" "SEEDS"
   local w s
   for s in $2; do for w in $1; do printf '%s:%s ' "$w" "$s"; done; done
@@ -61,7 +65,8 @@ if [ -z "$cases" ]; then
                   $(on_seeds "delay,asymmetry backlash,cubic_stiffness slack friction_asymmetry hum" 1)" ;;
     singles) cases="$(on_seeds "none $singles" "1 2")" ;;
     hard) cases="$(on_seeds "$hard" "1 2")" ;;
-    all) cases="$(on_seeds "none $singles" "1 2") $(on_seeds "$hard" "1 2")" ;;
+    definitions) cases="$(on_seeds "$definitions" "1 2")" ;;
+    all) cases="$(on_seeds "none $singles" "1 2") $(on_seeds "$hard" "1 2") $(on_seeds "$definitions" "1 2")" ;;
     *) echo "acceptance.sh: unknown set $set_name" >&2; usage ;;
   esac
 fi

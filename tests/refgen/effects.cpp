@@ -15,14 +15,22 @@ const std::vector<std::string> &effect_names() {
       "none",     "cubic_stiffness", "asymmetry", "maxwell",  "viscous",
       "backlash", "backlash_held",   "mullins",   "delay",    "delay_lowpass", "inertia",
       "offset",   "softening",       "slack",     "relaxation_spectrum",
-      "friction_asymmetry",          "hum",       "drift",     "clipping"};
+      "friction_asymmetry",          "hum",       "drift",     "clipping",  "spikes",
+      // other definitions of the same words
+      "asymmetry_quadratic", "softening_tanh", "mullins_erf", "stiffening_quintic",
+      "delay_displacement"};
   return names;
 }
 
 std::string expected_word(const std::string &effect) {
   if (effect == "backlash_held") return "backlash";
-  if (effect == "delay_lowpass") return "delay";
-  if (effect == "hum" || effect == "drift" || effect == "clipping") return "unexplained";
+  if (effect == "delay_lowpass" || effect == "delay_displacement") return "delay";
+  if (effect == "asymmetry_quadratic") return "asymmetry";
+  if (effect == "softening_tanh") return "softening";
+  if (effect == "mullins_erf") return "mullins";
+  if (effect == "stiffening_quintic") return "cubic_stiffness";
+  if (effect == "hum" || effect == "drift" || effect == "clipping" || effect == "spikes")
+    return "unexplained";
   return effect;
 }
 
@@ -77,6 +85,8 @@ void apply_effect(Scenario &sc, const std::string &e, Rng &rng) {
     c.delay = rng.uniform(0.002, 0.006);
   else if (e == "delay_lowpass")  // the other definition: a load-cell amplifier's bandwidth,
     c.force_lowpass_hz = 1.0 / (kTwoPi * rng.uniform(0.002, 0.006));  // group delay 2-6 ms
+  else if (e == "delay_displacement")  // the other channel lags: the force leads by 2-6 ms
+    c.disp_delay = rng.uniform(0.002, 0.006);
   else if (e == "offset")
     c.offset = rng.sign() * rng.uniform(0.02, 0.05) * Fel;
   else if (e == "softening") {
@@ -89,6 +99,19 @@ void apply_effect(Scenario &sc, const std::string &e, Rng &rng) {
     add_spectrum(s, rng.uniform(0.4, 0.8) * Kst, rng.uniform(0.2, 0.5));
   else if (e == "friction_asymmetry")
     s.c0_neg_ratio = std::pow(rng.uniform(1.2, 2.0), rng.sign());
+  else if (e == "asymmetry_quadratic")  // tangent stiffness at +-A differs by 30-50% of Kst
+    s.quad = rng.sign() * rng.uniform(0.08, 0.12) * Kst / A;
+  else if (e == "stiffening_quintic")   // +12-25% of the elastic force at A
+    s.quintic = rng.uniform(0.12, 0.25) * Kst / (A * A * A * A);
+  else if (e == "softening_tanh") {
+    s.soft_k = rng.uniform(0.3, 0.6) * Kst;
+    s.soft_x = rng.uniform(0.15, 0.3) * A;
+    s.soft_tanh = true;
+  }
+  else if (e == "mullins_erf") {
+    s.mullins = rng.uniform(0.15, 0.3);
+    s.mullins_erf = true;
+  }
   else if (e == "hum") {
     c.hum = rng.uniform(0.01, 0.02) * Fel;
     c.hum_phase = rng.uniform(0.0, kTwoPi);
@@ -97,6 +120,10 @@ void apply_effect(Scenario &sc, const std::string &e, Rng &rng) {
     s.drift_rate = rng.sign() * rng.uniform(0.04, 0.08) / T;
   else if (e == "clipping")  // the force channel saturates below the loops' peaks
     c.clip = rng.uniform(0.75, 0.9) * Fel;
+  else if (e == "spikes") {  // one sample in 200-500 off by 5-15% of the elastic force
+    c.spikes = rng.uniform(0.05, 0.15) * Fel;
+    c.spike_rate = 1.0 / rng.uniform(200.0, 500.0);
+  }
   else
     throw std::invalid_argument("unknown effect '" + e + "'");
 }

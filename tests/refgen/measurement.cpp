@@ -122,7 +122,7 @@ Samples run_record(const Specimen &s, const Command &cmd, const Chain &c) {
   for (size_t k = 0; k < n; ++k) {
     const double t = (double)k * c.dt;
     r.t[k] = t;
-    r.x_true[k] = x[k * m];
+    r.x_true[k] = c.disp_delay > 0.0 ? interpolate(x, (t - c.disp_delay) / h) : x[k * m];
     const double Fk = interpolate(F, (t - c.delay) / h);  // the force channel lags
     Fmax = std::fmax(Fmax, std::fabs(Fk));
     xmax = std::fmax(xmax, std::fabs(r.x_true[k]));
@@ -136,6 +136,9 @@ Samples run_record(const Specimen &s, const Command &cmd, const Chain &c) {
     r.x[k] = r.x_true[k] + c.disp_noise * xmax * rng.normal();
     r.F[k] = r.F_clean[k] + c.force_noise * Fmax * rng.normal();
   }
+  if (c.spikes > 0.0)  // isolated glitches of either sign, on the recorded force only
+    for (size_t k = 0; k < n; ++k)
+      if (rng.uniform() < c.spike_rate) r.F[k] += (rng.uniform() < 0.5 ? -1.0 : 1.0) * c.spikes * rng.uniform(0.5, 1.0);
   if (c.clip > 0.0)  // a saturating load cell (or its amplifier) clips what it records
     for (size_t k = 0; k < n; ++k) {
       r.F_clean[k] = std::fmax(-c.clip, std::fmin(c.clip, r.F_clean[k]));

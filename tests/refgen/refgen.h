@@ -48,6 +48,12 @@ struct Specimen {
   double soft_k = 0.0;        // F += soft_k xb / sqrt(1 + (xb/soft_x)^2) [N/mm]
   double soft_x = 1.0;        //                                         [mm]
   double mullins = 0.0;       // fraction of the K0 path lost below the prior max |xb|
+  // Other definitions of the same effects (another lab's conventions):
+  double quad = 0.0;          // F += quad xb^2: asymmetry as a quadratic term  [N/mm^2]
+  double quintic = 0.0;       // F += quintic xb^5: stiffening of fifth order    [N/mm^5]
+  bool soft_tanh = false;     // softening as soft_k soft_x tanh(xb/soft_x) instead
+  bool mullins_erf = false;   // Mullins loss mu erf(2 (1 - (xb/xb_max)^2)): nearly
+                              // uniform below the prior max (Ogden-Roxburgh-like)
   std::vector<Branch> branches;  // Maxwell branches in parallel on xb
   double viscous = 0.0;       // F += viscous xb'                        [N s/mm]
   double mass = 0.0;          // actuator-side fixture mass: F += mass x'' [t]
@@ -91,11 +97,14 @@ struct Chain {
   double force_noise = 0.005;  // force noise std / max |F| of the record
   double disp_noise = 0.003;   // displacement noise std / max |x| of the record
   double delay = 0.0;        // force channel lag [s]
+  double disp_delay = 0.0;   // displacement channel lag [s] (the force then leads)
   double force_lowpass_hz = 0.0;  // first-order low-pass of the force channel (amplifier) [Hz], 0 = off
   double offset = 0.0;       // force sensor zero error [N]
   double hum = 0.0;          // 50 Hz mains hum amplitude on the force [N] (+30% at 150 Hz)
   double hum_phase = 0.0;
   double clip = 0.0;         // load-cell saturation: |F| recorded at most this [N] (0 = off)
+  double spikes = 0.0;       // acquisition glitches: size of isolated outlier samples [N]
+  double spike_rate = 0.0;   // their probability per sample
   unsigned long long seed = 1;  // noise stream
 };
 

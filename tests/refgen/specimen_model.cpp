@@ -41,17 +41,27 @@ double elastic_force(const Specimen &s, double scale, double xb, double y1, doub
     F += s.asym * xb * th;
     dF += s.asym * (th + u * (1.0 - th * th));
   }
-  if (s.soft_k != 0.0) {  // initial stiffness soft_k, saturating at soft_k soft_x
+  F += s.quad * xb * xb + s.quintic * xb * xb * xb * xb * xb;
+  dF += 2.0 * s.quad * xb + 5.0 * s.quintic * xb * xb * xb * xb;
+  if (s.soft_k != 0.0 && s.soft_tanh) {  // initial stiffness soft_k, saturating at soft_k soft_x
+    const double th = std::tanh(xb / s.soft_x);
+    F += s.soft_k * s.soft_x * th;
+    dF += s.soft_k * (1.0 - th * th);
+  } else if (s.soft_k != 0.0) {
     const double r2 = 1.0 + (xb / s.soft_x) * (xb / s.soft_x);
     F += s.soft_k * xb / std::sqrt(r2);
     dF += s.soft_k / (r2 * std::sqrt(r2));
   }
   if (s.mullins != 0.0 && std::fabs(xb) < xb_max) {
     // Below the prior maximum the K0 path has lost up to `mullins` of its
-    // stiffness: K0 xb (1 - mu (1 - (xb/xb_max)^2)), virgin again at xb_max.
-    const double r = xb / xb_max, k = s.mullins * scale * s.K0;
-    F -= k * xb * (1.0 - r * r);
-    dF -= k * (1.0 - 3.0 * r * r);
+    // stiffness: K0 xb (1 - mu g(r)), r = xb/xb_max, virgin again at xb_max;
+    // g = 1 - r^2, or erf(2 (1 - r^2)) (a loss nearly uniform below the max).
+    const double r = xb / xb_max, k = s.mullins * scale * s.K0, u = 1.0 - r * r;
+    const double g = s.mullins_erf ? std::erf(2.0 * u) : u;
+    const double dg_dr = s.mullins_erf ? -8.0 * r * std::exp(-4.0 * u * u) / 1.7724538509055160273  /* sqrt(pi) */
+                                       : -2.0 * r;
+    F -= k * xb * g;
+    dF -= k * (g + r * dg_dr);
   }
   *dF_dxb = dF;
   return F;
