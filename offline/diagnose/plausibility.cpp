@@ -71,18 +71,16 @@ std::string delay_contradiction(const ExtModel &fitted, const ExtModel &current,
     lag_sum += lag * (double)r.t.size();
     w_sum += (double)r.t.size();
   }
-  // A lead (the displacement channel lags) is checked as a lag of the
-  // displacement: the force's lag must then be negative.
-  const double lag = (w_sum > 0 ? lag_sum / w_sum : 0.0) * (fitted.delay_lead ? -1.0 : 1.0);
+  const double lag = w_sum > 0 ? lag_sum / w_sum : 0.0;
   // The current model has absorbed part of a true delay into its dashpots,
   // so the lag it leaves is smaller than the fitted delay; what contradicts a
   // delay is a force that does not lag at all, or lags far more.
   if (lag > 0.2 * fitted.delay - dt && lag < 3.0 * fitted.delay + dt) return "";
   char b[200];
   std::snprintf(b, sizeof b,
-                "contradicted by the cross-correlation: the %s lags by %.3g s, not the fitted "
-                "%.3g s",
-                fitted.delay_lead ? "displacement" : "force", lag, fitted.delay);
+                "contradicted by the cross-correlation: the force lags the model by %.3g s, "
+                "not the fitted %.3g s",
+                lag, fitted.delay);
   return b;
 }
 
@@ -204,6 +202,13 @@ std::string contradiction(const Candidate &c, const ExtModel &fitted, const ExtM
                           const std::vector<Record> &recs, const std::vector<double> &sigma,
                           const MisfitOptions &opt) {
   if (c.offset) return offset_contradiction(fitted, recs, sigma);
+  // A lead (the displacement channel lags) is not checked against the
+  // current model's cross-correlation: RT's dashpots imitate a lead (to
+  // first order a dashpot), and the baseline over-absorbed it on refgen
+  // delay_displacement (the measured force then lagged it by up to 4.5 ms
+  // against a true 4.8 ms lead). It must instead beat every physical word by
+  // 25% (cause_round.cpp, demote_close_lead).
+  if (c.delay && fitted.delay_lead) return "";
   if (c.delay) return delay_contradiction(fitted, current, recs, opt);
   if (c.name == "slack") return slack_contradiction(fitted, recs, sigma, opt);
   if (c.name == "softening") return softening_contradiction(fitted, recs);

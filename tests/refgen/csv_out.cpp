@@ -77,7 +77,9 @@ void write_truth_json(const std::string &path, const Scenario &sc,
     << ", \"Kpa\": " << s.Kpa << ", \"Kr\": " << s.Kr << ", \"C0\": " << s.C0
     << ", \"alpha\": " << s.alpha << ", \"N\": " << s.N << ", \"c0_neg_ratio\": " << s.c0_neg_ratio
     << ", \"cubic\": " << s.cubic << ", \"asym\": " << s.asym << ", \"soft_k\": " << s.soft_k
-    << ", \"soft_x\": " << s.soft_x << ", \"mullins\": " << s.mullins
+    << ", \"soft_x\": " << s.soft_x << ", \"soft_tanh\": " << (s.soft_tanh ? "true" : "false")
+    << ", \"quad\": " << s.quad << ", \"quintic\": " << s.quintic
+    << ", \"mullins\": " << s.mullins << ", \"mullins_erf\": " << (s.mullins_erf ? "true" : "false")
     << ", \"viscous\": " << s.viscous << ", \"mass\": " << s.mass << ", \"gap\": \""
     << (s.gap == Gap::none ? "none" : s.gap == Gap::floating ? "floating" : "held")
     << "\", \"half_gap\": " << s.half_gap << ", \"slack\": " << (s.slack ? "true" : "false")
@@ -87,8 +89,9 @@ void write_truth_json(const std::string &path, const Scenario &sc,
   o << "]},\n  \"chain\": {\"servo_order\": " << c.servo_order << ", \"servo_hz\": " << c.servo_hz
     << ", \"dt\": " << c.dt << ", \"substeps\": " << c.substeps << ", \"force_noise\": "
     << c.force_noise << ", \"disp_noise\": " << c.disp_noise << ", \"delay\": " << c.delay
-    << ", \"force_lowpass_hz\": " << c.force_lowpass_hz
-    << ", \"offset\": " << c.offset << ", \"hum\": " << c.hum
+    << ", \"force_lowpass_hz\": " << c.force_lowpass_hz << ", \"disp_delay\": " << c.disp_delay
+    << ", \"offset\": " << c.offset << ", \"hum\": " << c.hum << ", \"clip\": " << c.clip
+    << ", \"spikes\": " << c.spikes << ", \"spike_rate\": " << c.spike_rate
     << ", \"column_style\": " << sc.column_style << "},\n  \"records\": [";
   std::vector<const Samples *> fit, hold;
   for (size_t i = 0; i < sc.records.size(); ++i) {
