@@ -10,8 +10,7 @@
 
 #include <cmath>
 
-#include "offline/diagnose/candidates.h"
-#include "offline/diagnose/extended_fit.h"
+#include "ext_model_helpers.h"
 
 namespace rtb {
 namespace {
@@ -32,30 +31,15 @@ Record record(const char *name, double hz, double amp, bool triangle) {
   return r;
 }
 
-ExtModel paper_model() {
-  ExtModel m;
-  rtb_params_default(&m.p, RTB_MODEL_RT);
-  return m;
-}
+using rtb_test::paper_model;
 
 std::vector<Record> measured_through(const ExtModel &truth) {
   std::vector<Record> recs = {record("triangle", 0.5, 1.2, true), record("sine", 3.0, 0.7, false)};
-  ExtFitSpec none;
-  none.free.clear();
-  for (Record &r : recs) {
-    Eigen::VectorXd F;
-    predict_extended(truth, r, SimOptions(), none, F, nullptr);
-    for (size_t j = 0; j < r.F.size(); ++j) r.F[j] = F[(Eigen::Index)j];
-  }
+  rtb_test::measure_through(truth, recs);
   return recs;
 }
 
-const Candidate &asymmetry_word() {
-  for (const Candidate &c : candidate_vocabulary())
-    if (c.name == "asymmetry") return c;
-  ADD_FAILURE() << "no asymmetry candidate";
-  return candidate_vocabulary().front();
-}
+const Candidate &asymmetry_word() { return rtb_test::vocabulary_word("asymmetry"); }
 
 TEST(AsymmetryDefinitions, QuadraticSpringIsInTheStaticLaw) {
   rtb_params p = paper_model().p;
@@ -83,7 +67,7 @@ TEST(AsymmetryDefinitions, TheOtherDefinitionMatchesAtTwoThirdsOfTheStroke) {
   ASSERT_EQ(alt.extra.size(), 1u);
   EXPECT_EQ(alt.extra[0], P_k2);
   EXPECT_EQ(alt_start.p.k_asym, 0.0);
-  EXPECT_DOUBLE_EQ(alt_start.p.k2 * 1.0 * 1.0, 90.0 * 1.0);  // k2 x^2 = k_asym |x| at x = 1
+  EXPECT_DOUBLE_EQ(alt_start.p.k2, 90.0);  // k2 x^2 = k_asym |x| at x = 2/3 Xmax = 1
   // And back, to the kink (clamped to |k_asym| <= 0.9 K0).
   Candidate back;
   ExtModel back_start;

@@ -8,7 +8,7 @@
 
 #include <cmath>
 
-#include "offline/diagnose/extended_fit.h"
+#include "ext_model_helpers.h"
 
 namespace rtb {
 namespace {
@@ -24,29 +24,17 @@ Record sine_record(double dt, double hz, double seconds) {
   return r;
 }
 
-ExtModel paper_model() {
-  ExtModel m;
-  rtb_params_default(&m.p, RTB_MODEL_RT);
-  return m;
-}
-
-Eigen::VectorXd predicted(const ExtModel &m, const Record &r, const ExtFitSpec &spec,
-                          Eigen::MatrixXd *jac = nullptr) {
-  Eigen::VectorXd F;
-  predict_extended(m, r, SimOptions(), spec, F, jac);
-  return F;
-}
+using rtb_test::paper_model;
+using rtb_test::predicted;
 
 TEST(ForceChannel, TheLowPassIsTheContinuousFirstOrderFilter) {
   const double dt = 1e-4, tau = 5e-3;
   const Record rec = sine_record(dt, 5.0, 1.0);
-  ExtFitSpec none;
-  none.free.clear();
-  const Eigen::VectorXd F = predicted(paper_model(), rec, none);
+  const Eigen::VectorXd F = predicted(paper_model(), rec);
   ExtModel m = paper_model();
   m.delay = tau;
   m.delay_lowpass = true;
-  const Eigen::VectorXd y = predicted(m, rec, none);
+  const Eigen::VectorXd y = predicted(m, rec);
   // Reference: tau y' = F - y with F linear between samples, RK4 at dt/50.
   const int sub = 50;
   const double hs = dt / sub;
@@ -124,19 +112,17 @@ TEST(ForceChannel, LeadSensitivitiesMatchCentralDifferences) { expect_channel_ja
 // prediction by the lag's 2 d lands on the lag's prediction.
 TEST(ForceChannel, ALeadIsTheLagMirrored) {
   const Record rec = sine_record(1e-3, 3.0, 1.0);
-  ExtFitSpec none;
-  none.free.clear();
   ExtModel lag = paper_model(), lead = paper_model();
   lag.delay = lead.delay = 4e-3;
   lead.delay_lead = true;
-  const Eigen::VectorXd a = predicted(lag, rec, none), b = predicted(lead, rec, none);
+  const Eigen::VectorXd a = predicted(lag, rec), b = predicted(lead, rec);
   const double scale = a.cwiseAbs().maxCoeff();
   for (Eigen::Index j = 20; j + 20 < a.size(); ++j) ASSERT_NEAR(b[j - 4], a[j + 4], 1e-12 * scale) << j;
   // And artefact correction undoes it.
   Record measured = rec;
   for (Eigen::Index j = 0; j < b.size(); ++j) measured.F[(size_t)j] = b[j];
   const Record corrected = artefact_corrected({measured}, lead)[0];
-  const Eigen::VectorXd F = predicted(paper_model(), rec, none);
+  const Eigen::VectorXd F = predicted(paper_model(), rec);
   for (Eigen::Index j = 20; j + 20 < F.size(); ++j) ASSERT_NEAR(corrected.F[(size_t)j], F[j], 1e-12 * scale) << j;
 }
 
@@ -153,9 +139,7 @@ TEST(ForceChannel, AVanishingLowPassIsFiniteAndTransparent) {
   spec.fit_delay = true;
   Eigen::MatrixXd J;
   const Eigen::VectorXd y = predicted(m, rec, spec, &J);
-  ExtFitSpec none;
-  none.free.clear();
-  const Eigen::VectorXd F = predicted(paper_model(), rec, none);
+  const Eigen::VectorXd F = predicted(paper_model(), rec);
   EXPECT_TRUE(J.allFinite());
   EXPECT_LT((y - F).cwiseAbs().maxCoeff(), 1e-12 * F.cwiseAbs().maxCoeff());
 }

@@ -11,7 +11,7 @@
 
 #include <cmath>
 
-#include "offline/diagnose/extended_fit.h"
+#include "ext_model_helpers.h"
 #include "offline/diagnose/plausibility.h"
 
 namespace rtb {
@@ -33,28 +33,14 @@ Record periodic(const char *name, double hz, double amp, bool triangle) {
   return r;
 }
 
-const Candidate &delay_word() {
-  for (const Candidate &c : candidate_vocabulary())
-    if (c.delay) return c;
-  ADD_FAILURE() << "no delay candidate";
-  return candidate_vocabulary().front();
-}
-
-Eigen::VectorXd predicted(const ExtModel &m, const Record &r) {
-  Eigen::VectorXd F;
-  predict_extended(m, r, SimOptions(), ExtFitSpec(), F, nullptr);
-  return F;
-}
+using rtb_test::paper_model;
 
 // Two slow triangles (0.25 Hz) and a 5 Hz sine, measured through `truth`.
 std::vector<Record> measured_through(const ExtModel &truth) {
   std::vector<Record> recs = {periodic("triangle_a", 0.25, 1.2, true),
                               periodic("triangle_b", 0.25, 0.8, true),
                               periodic("sine_5hz", 5.0, 0.4, false)};
-  for (Record &r : recs) {
-    const Eigen::VectorXd F = predicted(truth, r);
-    for (size_t j = 0; j < r.F.size(); ++j) r.F[j] = F[(Eigen::Index)j];
-  }
+  rtb_test::measure_through(truth, recs);
   return recs;
 }
 
@@ -62,13 +48,7 @@ std::string check(const ExtModel &current, const std::vector<Record> &recs, doub
   ExtModel fitted = current;
   fitted.delay = delay;
   const std::vector<double> sigma(recs.size(), 1.0);
-  return contradiction(delay_word(), fitted, current, recs, sigma, MisfitOptions());
-}
-
-ExtModel paper_model() {
-  ExtModel m;
-  rtb_params_default(&m.p, RTB_MODEL_RT);
-  return m;
+  return contradiction(rtb_test::vocabulary_word("delay"), fitted, current, recs, sigma, MisfitOptions());
 }
 
 TEST(DelayPlausibility, ATrueDelayIsNotRefused) {
@@ -83,18 +63,11 @@ TEST(DelayPlausibility, AForceThatDoesNotLagRefusesTheDelay) {
   EXPECT_NE(why.find("cross-correlation"), std::string::npos) << why;
 }
 
-const Candidate &word_named(const char *name) {
-  for (const Candidate &c : candidate_vocabulary())
-    if (c.name == name) return c;
-  ADD_FAILURE() << "no candidate " << name;
-  return candidate_vocabulary().front();
-}
-
 std::string softening_check(const rtb_params &p) {
   ExtModel fitted = paper_model();
   fitted.p = p;
   const std::vector<Record> recs = {periodic("triangle", 0.25, 1.2, true)};
-  return contradiction(word_named("softening"), fitted, paper_model(), recs,
+  return contradiction(rtb_test::vocabulary_word("softening"), fitted, paper_model(), recs,
                        std::vector<double>(1, 1.0), MisfitOptions());
 }
 

@@ -109,28 +109,19 @@ std::string slack_contradiction(const ExtModel &fitted, const std::vector<Record
   return b;
 }
 
-// Tangent stiffness of the fitted static elastic law at x [force/length]:
-// the K0 path with its elastic extensions and the relaxed cell chain (Kpa in
-// series with N springs Kr), as rtb_static_force; rate-dependent branches
-// have relaxed.
-double static_tangent(const rtb_params &p, double x) {
-  const double chain = 1.0 / (1.0 / p.Kpa + p.cells / p.Kr);
-  double k = p.K0 + chain + 2.0 * p.k2 * x + 3.0 * p.k3 * x * x +
-             (x > 0.0 ? p.k_asym : (x < 0.0 ? -p.k_asym : 0.0));
-  if (p.sat_disp > 0.0) {
-    const double th = std::tanh(x / p.sat_disp);
-    k += p.sat_force / p.sat_disp * (1.0 - th * th);
-  }
-  return k;
-}
-
-// Largest relative drop of the tangent stiffness walking from 0 to x_end:
-// max over x of (the largest tangent before x - tangent at x) / that largest.
+// Largest relative drop of the static law's tangent stiffness walking from
+// 0 to x_end: max over x of (the largest tangent before x - the tangent at
+// x) / that largest. The law is the element's own (rtb_static_force: the K0
+// path with its elastic extensions and the relaxed cell chain); the tangent
+// is its slope over 1/400 of the way.
 double tangent_drop(const rtb_params &p, double x_end) {
   const int n = 400;
-  double top = static_tangent(p, 0.0), drop = 0.0;
+  if (x_end == 0.0) return 0.0;
+  const double h = x_end / n;
+  double F_prev = rtb_static_force(&p, 0.0), top = -INFINITY, drop = 0.0;
   for (int i = 1; i <= n; ++i) {
-    const double k = static_tangent(p, x_end * i / n);
+    const double F = rtb_static_force(&p, h * i), k = (F - F_prev) / h;
+    F_prev = F;
     top = std::max(top, k);
     if (top > 0.0) drop = std::max(drop, (top - k) / top);
   }
@@ -207,7 +198,7 @@ std::string contradiction(const Candidate &c, const ExtModel &fitted, const ExtM
   // first order a dashpot), and the baseline over-absorbed it on refgen
   // delay_displacement (the measured force then lagged it by up to 4.5 ms
   // against a true 4.8 ms lead). It must instead beat every physical word by
-  // 25% (cause_round.cpp, demote_close_lead).
+  // 25% (cause_round.cpp, demote_lead_twins).
   if (c.delay && fitted.delay_lead) return "";
   if (c.delay) return delay_contradiction(fitted, current, recs, opt);
   if (c.name == "slack") return slack_contradiction(fitted, recs, sigma, opt);
