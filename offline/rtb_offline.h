@@ -82,9 +82,18 @@ double &param_ref(rtb_params &p, ParamId id);
 double param_get(const rtb_params &p, ParamId id);
 
 // ---------------------------------------------------------------- forward
+// How the element reaches a record's first displacement x[0] from rest at 0.
+enum class StartMode {
+  automatic,  // hold when |x[0]| is beyond 5% of the record's largest |x|, else ramp
+  ramp,       // a linear ramp 0 -> x[0] just before the record (section 5.5's first loading)
+  hold        // the ramp, then x[0] held ~1e5 s: a specimen preloaded and left to relax
+};
+const char *start_mode_name(StartMode m);  // "auto", "ramp", "hold"
+
 struct SimOptions {
   double ramp_time = 0.0;   // ramp in linearly from rest to x[0] over this
                             // time before the record (<= 0: automatic)
+  StartMode start = StartMode::automatic;
   double tol = 0.0;         // Newton tolerance of the stepper (rtb_settings.tol);
                             // 0: the library default, i.e. exactly what a
                             // controller passing NULL settings runs

@@ -102,6 +102,15 @@ class CliTest : public ::testing::Test {
     return file(name);
   }
 
+  // The model's own force for make_input's 800 samples: sim.csv.
+  std::string simulated_record(const std::string &params) const {
+    const std::string in = make_input("x.csv", 800), sim = file("sim.csv");
+    const CmdResult r = rtb("simulate --quiet --params " + shell_quote(params) + " --input " +
+                            shell_quote(in) + " --out " + shell_quote(sim));
+    EXPECT_EQ(r.code, 0) << r.err;
+    return sim;
+  }
+
   std::string make_params(const std::string &name) const {
     write_text(file(name),
                "{\"model\":\"rt\",\"cells\":9,\"params\":{\"K0\":1000,\"Kpa\":800,\"Kr\":3000,"
@@ -191,13 +200,8 @@ TEST_F(CliTest, SimulateWritesForceColumnMatchingLibrary) {
 }
 
 TEST_F(CliTest, ValidateSelfConsistentRecordHasZeroError) {
-  const std::string in = make_input("x.csv", 800);
   const std::string params = make_params("p.json");
-  const std::string sim = file("sim.csv");
-  ASSERT_EQ(rtb("simulate --quiet --params " + shell_quote(params) + " --input " +
-                shell_quote(in) + " --out " + shell_quote(sim))
-                .code,
-            0);
+  const std::string sim = simulated_record(params);
   const std::string vj = file("v.json");
   const CmdResult r = rtb("validate --params " + shell_quote(params) + " --data " + shell_quote(sim) +
                     " --out " + shell_quote(vj));
@@ -210,6 +214,41 @@ TEST_F(CliTest, ValidateSelfConsistentRecordHasZeroError) {
   EXPECT_EQ(doc["files"][0]["samples"], 800);
   EXPECT_EQ(doc["files"][0]["sha256"], rtb::sha256_file(sim));
   EXPECT_LT(doc["files"][0]["error"].get<double>(), 1e-12);
+}
+
+// A compression-positive load cell: the force falls as the displacement
+// rises. The tool reads it as such (says so, records force_sign -1) and
+// fits the same element; --force-sign 1 keeps the sign as recorded.
+TEST_F(CliTest, AForceOfTheOtherSignConventionIsFlippedAndSaid) {
+  const std::string params = make_params("p.json");
+  const std::string sim = simulated_record(params);
+  std::string flipped = "time,displacement,force\n";
+  std::istringstream lines(read_text(sim));
+  std::string line;
+  while (std::getline(lines, line)) {
+    if (line.empty() || line[0] == '#' || line[0] == 't') continue;
+    double t, x, F;
+    ASSERT_EQ(std::sscanf(line.c_str(), "%lf,%lf,%lf", &t, &x, &F), 3) << line;
+    char buf[128];
+    std::snprintf(buf, sizeof buf, "%.17g,%.17g,%.17g\n", t, x, -F);
+    flipped += buf;
+  }
+  write_text(file("flipped.csv"), flipped);
+  const std::string vj = file("v.json");
+  const CmdResult r = rtb("validate --params " + shell_quote(params) + " --data " +
+                          shell_quote(file("flipped.csv")) + " --out " + shell_quote(vj));
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("flipped"), std::string::npos) << r.err;
+  const auto doc = nlohmann::json::parse(read_text(vj));
+  EXPECT_LT(doc["error"].get<double>(), 1e-12);
+  EXPECT_EQ(doc["preprocessing"]["force_sign"], -1);
+  const CmdResult kept = rtb("validate --force-sign 1 --params " + shell_quote(params) +
+                             " --data " + shell_quote(file("flipped.csv")) + " --out " + shell_quote(vj));
+  ASSERT_EQ(kept.code, 0) << kept.err;
+  EXPECT_GT(nlohmann::json::parse(read_text(vj))["error"].get<double>(), 1.9);  // |F + F| / |F| = 2
+  EXPECT_EQ(rtb("validate --force-sign 2 --params " + shell_quote(params) + " --data " +
+                shell_quote(file("flipped.csv")) + " --out " + shell_quote(vj)).code,
+            2);
 }
 
 // --init friction: a sliding device (one slider, Kr = 1e-3 Kpa, alpha near

@@ -69,6 +69,15 @@ TEST(IndependentDiagnose, PlainRtIsNone) {
   EXPECT_EQ(d.R.cause, "none") << d.R.verdict;
 }
 
+// Plain RT oscillating about a held preload (0.5-1.5 amplitudes): the
+// element must start relaxed there, or the start transient reads as an
+// offset (session 13's binary named `offset` on 4 of seeds 1-6).
+TEST(IndependentDiagnose, PreloadedPlainRtIsNone) {
+  RTB_SKIP_UNDER_SANITIZERS();
+  const Diagnosed d = diagnose_refgen("preload", 1);
+  EXPECT_EQ(d.R.cause, "none") << d.R.verdict;
+}
+
 // A clearance whose bushing end floats free in the gap (force 0 there).
 TEST(IndependentDiagnose, FloatingClearanceIsBacklash) {
   RTB_SKIP_UNDER_SANITIZERS();

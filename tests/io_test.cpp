@@ -260,6 +260,32 @@ TEST(IoCsv, CrlfBomAndTrailingBlankLines) {
   EXPECT_EQ(r.F[8], 2.5);
 }
 
+// European rigs: ';' between fields and a decimal comma; tab-separated
+// exports; a malformed row is still named by file and line.
+TEST(IoCsv, SemicolonsDecimalCommasAndTabs) {
+  TempDir d;
+  const std::string p = d.file("a.csv");
+  std::string text = "Zeit;Weg;Kraft;time [s];stroke [mm];force [N]\n";
+  for (int i = 0; i < 9; ++i)
+    text += "x;y;z;" + std::to_string(i) + ",5;-1,25;" + std::to_string(3 * i) + "\n";
+  write_text(p, text);
+  rtb::Record r = rtb::read_record_csv(p);
+  ASSERT_EQ(r.t.size(), 9u);
+  EXPECT_EQ(r.t[2], 2.5);
+  EXPECT_EQ(r.x[2], -1.25);
+  EXPECT_EQ(r.F[2], 6.0);
+  write_text(p, "t\tx\tF\n0\t0.5\t1e3\n" + std::string("1\t0.25\t2\n2\t0\t3\n3\t1\t4\n") +
+                    "4\t1\t4\n5\t1\t4\n6\t1\t4\n7\t1\t4\n8\t1\t4\n");
+  r = rtb::read_record_csv(p);
+  ASSERT_EQ(r.t.size(), 9u);
+  EXPECT_EQ(r.F[0], 1000.0);
+  EXPECT_EQ(r.x[1], 0.25);
+  write_text(p, "time;disp;force\n0;0;0\n0,1;0,2\n");
+  expect_input_error(p, {p + ":3:", "2 fields", "header has 3"});
+  write_text(p, "time;disp;force\n0;0;0\n0,1;0,2,5;1\n");  // two decimal commas
+  expect_input_error(p, {p + ":3:", "non-numeric", "0,2,5"});
+}
+
 TEST(IoCsv, ForceOptionalOnRequest) {
   TempDir d;
   const std::string p = d.file("a.csv");

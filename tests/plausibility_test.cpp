@@ -63,6 +63,19 @@ TEST(DelayPlausibility, AForceThatDoesNotLagRefusesTheDelay) {
   EXPECT_NE(why.find("cross-correlation"), std::string::npos) << why;
 }
 
+// A preloaded record: the lag of the dynamics, whatever static force it
+// carries (the plain sum peaks at the search's edge, 10.8 ms).
+TEST(DelayPlausibility, TheLagIgnoresAStaticForce) {
+  Record r = periodic("sine", 20.0, 1.0, false);
+  Eigen::VectorXd F((Eigen::Index)r.t.size());
+  for (size_t i = 0; i < r.t.size(); ++i) {
+    F[(Eigen::Index)i] = std::sin(2.0 * M_PI * 20.0 * r.t[i]);
+    r.F[i] = 480.0 + std::sin(2.0 * M_PI * 20.0 * (r.t[i] - 4e-3));  // lags 4 ms
+  }
+  for (Eigen::Index i = 0; i < F.size(); ++i) F[i] += 480.0;
+  EXPECT_NEAR(xcorr_lag(r, F, 12), 4e-3, 1e-4);
+}
+
 std::string softening_check(const rtb_params &p) {
   ExtModel fitted = paper_model();
   fitted.p = p;

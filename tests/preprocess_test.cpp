@@ -27,6 +27,30 @@ Record sine_record(double f_hz, double dt, double T) {
   return r;
 }
 
+// A passive specimen's force rises with its displacement; a record whose
+// force falls with it was signed the other way round.
+TEST(ForceSign, FlipsOnlyAClearlyOppositeConvention) {
+  Record r = sine_record(1.0, 1e-3, 2.0);
+  double c = 0.0;
+  EXPECT_EQ(force_sign_of({r}, &c), 1);
+  EXPECT_NEAR(c, 1.0, 1e-12);
+  for (double &f : r.F) f = -900.0 * f + 50.0;  // compression-positive, with a preload
+  EXPECT_EQ(force_sign_of({r}, &c), -1);
+  EXPECT_NEAR(c, -1.0, 1e-12);
+  Record lag = sine_record(1.0, 1e-3, 2.0);  // a lossy loop: the force leads by 60 degrees
+  for (size_t i = 0; i < lag.t.size(); ++i) lag.F[i] = std::sin(2 * M_PI * lag.t[i] + M_PI / 3);
+  EXPECT_EQ(force_sign_of({lag}), 1);
+  Record noise = sine_record(1.0, 1e-3, 2.0);  // no relation: keep the sign as recorded
+  for (size_t i = 0; i < noise.t.size(); ++i) noise.F[i] = std::cos(2 * M_PI * 37.0 * noise.t[i]);
+  EXPECT_EQ(force_sign_of({noise}), 1);
+  Preprocess pp;
+  pp.force_sign = -1;
+  std::vector<Record> recs = {sine_record(1.0, 1e-3, 0.1)};
+  apply_preprocess(pp, recs, true);
+  EXPECT_EQ(recs[0].F[10], -sine_record(1.0, 1e-3, 0.1).F[10]);
+  EXPECT_EQ(preprocess_json(pp)["force_sign"], -1);
+}
+
 TEST(Lowpass, PassesSlowSineWithoutLagAndStopsChatter) {
   const double dt = 1.0 / 1024.0;
   const Record slow = sine_record(0.5, dt, 8.0), fast = sine_record(50.0, dt, 8.0);

@@ -91,6 +91,41 @@ TEST(RefgenIntegration, RelaxedForceIsTheStaticLaw) {
   EXPECT_NEAR(static_force(s, x) / Fs, 1.0, 1e-15);
 }
 
+// A preloaded rig: the specimen held at the preload for ever before t = 0
+// starts at the static law there (the end a half gap short of the actuator
+// when a clearance was closed by pushing), and the records move about it.
+TEST(RefgenChain, PreloadStartsRelaxedAtTheStaticLaw) {
+  Specimen s;
+  s.N = 7;
+  Chain c = clean_chain(5);
+  c.preload = -0.7;
+  const Samples r = run_record(s, sine(0.2, 1.0, 1.0), c);
+  EXPECT_EQ(r.x_true[0], -0.7);
+  EXPECT_NEAR(r.F_clean[0] / static_force(s, -0.7), 1.0, 1e-12);
+  double lo = INFINITY, hi = -INFINITY;
+  for (double x : r.x_true) lo = std::fmin(lo, x), hi = std::fmax(hi, x);
+  EXPECT_NEAR(lo, -0.9, 0.02);
+  EXPECT_NEAR(hi, -0.5, 0.02);
+  s.gap = Gap::held;
+  s.half_gap = 0.05;
+  const Samples g = run_record(s, sine(0.2, 1.0, 0.5), c);
+  EXPECT_NEAR(g.F_clean[0] / static_force(s, -0.65), 1.0, 1e-12);
+}
+
+// A compression-positive load cell records every force negated, the
+// measurement chain's additions included.
+TEST(RefgenChain, CompressionPositiveLoadCellNegatesTheForce) {
+  Specimen s;
+  Chain c = clean_chain(5);
+  c.offset = 3.0;
+  const Samples a = run_record(s, sine(0.5, 2.0, 0.5), c);
+  c.force_sign = -1.0;
+  const Samples b = run_record(s, sine(0.5, 2.0, 0.5), c);
+  for (size_t k = 0; k < a.F.size(); ++k) EXPECT_EQ(b.F_clean[k], -a.F_clean[k]);
+  EXPECT_EQ(expected_word("compression_positive"), "none");
+  EXPECT_EQ(expected_word("preload"), "none");
+}
+
 // The other definitions of the elastic words (session 13): the relaxed force
 // carries each closed form on top of the static law.
 TEST(RefgenEffects, OtherElasticDefinitionsAreTheirClosedForms) {

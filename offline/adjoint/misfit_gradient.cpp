@@ -79,8 +79,8 @@ MisfitValue misfit(const rtb_params &p, const std::vector<Record> &recs,
     pt.J0 = J0s.s;
     if (!want_grad) return;
     // Backward sweep: the adjoint of the discrete stepper, last step first.
-    // Step 0 is the model at rest at x = 0 (the grid ramps in otherwise): its
-    // force is 0 whatever p, so it adds nothing to the gradient.
+    // Step 0 is the model at rest at x = 0 (the grid ramps in, and holds,
+    // otherwise): its force is 0 whatever p, so it adds nothing to the gradient.
     StateDual bar, bar_prev;
     bar.clear();
     for (size_t i = g.x.size() - 1; i >= 1; --i) {
@@ -126,13 +126,14 @@ void record_sensitivities(const rtb_params &p, const Record &rec, const SimOptio
   if (cache) {
     SensitivityCache::Entry &e = cache->entry(&rec);
     const bool hit = e.valid && std::memcmp(&e.p, &p, sizeof p) == 0 && e.tol == sim.tol &&
-                     e.ramp == sim.ramp_time;
+                     e.ramp == sim.ramp_time && e.start == sim.start;
     if (!hit) {
       e.grid = make_drive_grid(rec, sim);
       e.tr = run_forward(p, e.grid, true, sim.tol);
       e.p = p;
       e.tol = sim.tol;
       e.ramp = sim.ramp_time;
+      e.start = sim.start;
       e.valid = true;
     }
     gp = &e.grid;

@@ -47,6 +47,7 @@ class SensitivityCache {
   struct Entry {
     rtb_params p{};
     double tol = 0, ramp = 0;
+    StartMode start = StartMode::automatic;
     bool valid = false;
     DriveGrid grid;
     Trajectory tr;

@@ -144,6 +144,13 @@ SimOptions sim_options_from(const Args &a) {
     opt.ramp_time = a.get_double("ramp-time", 0.0);
     if (!(opt.ramp_time > 0.0)) throw UsageError("--ramp-time must be > 0 (omit it for automatic)");
   }
+  if (a.has("start")) {
+    const std::string m = a.get("start");
+    if (m == "auto") opt.start = StartMode::automatic;
+    else if (m == "ramp") opt.start = StartMode::ramp;
+    else if (m == "hold") opt.start = StartMode::hold;
+    else throw UsageError("--start must be auto, ramp or hold (got '" + m + "')");
+  }
   return opt;
 }
 

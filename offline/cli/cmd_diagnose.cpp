@@ -54,6 +54,10 @@ int run_diagnose(int argc, char **argv) {
            "number of RT cells (default 15; a later cause must also beat 10, 12 and 20 "
            "cells, which the extended model may then take)"},
           {"fit-from", "S", "fit only samples from t0 + S on"},
+          {"ramp-time", "S", "ramp from rest to x[0] for records not starting at 0 (default auto)"},
+          {"start", "auto|ramp|hold",
+           "how the model reaches x[0] before a record: ramp from rest, or ramp and hold (a "
+           "relaxed preload); auto: hold when |x[0]| > 5% of the record's reach"},
           {"only", "LIST", "try only these candidates (comma separated)"},
           {"causes", "LIST",
            "what-if: fit these words in this order and accept them whatever the criteria say "
@@ -75,6 +79,7 @@ int run_diagnose(int argc, char **argv) {
   o.cells = (int)a.get_int("cells", RTB_DEFAULT_CELLS);
   if (o.cells < 1 || o.cells > RTB_MAX_CELLS) throw UsageError("--cells out of range");
   o.misfit.fit_from = a.get_double("fit-from", 0.0);
+  o.misfit.sim = sim_options_from(a);
   o.min_gain = a.get_double("min-gain", o.min_gain);
   o.threads = (int)a.get_int("threads", 2);
   o.quiet = a.has("quiet");
@@ -93,7 +98,8 @@ int run_diagnose(int argc, char **argv) {
     for (const std::string &p : a.all("holdout")) hold.push_back(read_record_csv(p));
 
   // Same preprocessing for held-out records, except the fit weights.
-  const Preprocess pre = preprocess_from(a);
+  Preprocess pre = preprocess_from(a);
+  resolve_force_sign(pre, fit, o.quiet);
   apply_preprocess(pre, fit, true);
   apply_preprocess(pre, hold, false);
 
@@ -101,6 +107,7 @@ int run_diagnose(int argc, char **argv) {
   print_diagnosis(R);
   nlohmann::ordered_json report = diagnosis_json(R, fit, hold);
   report["preprocessing"] = preprocess_json(pre);
+  report["start"] = start_mode_name(o.misfit.sim.start);
   write_file_atomic(a.get("out"), report.dump(2) + "\n");
   if (a.has("header")) write_file_atomic(a.get("header"), diagnosis_header(R, fit, name));
   if (a.has("plot-dir")) write_diagnosis_plots(R, fit, hold, a.get("plot-dir"));

@@ -165,6 +165,7 @@ int run_dynstiff(int argc, char **argv) {
           {"tol-stiffness", "R", "relative accuracy of |K*| (default 1e-3)"},
           {"tol-loss", "DEG", "accuracy of the loss angle (default 0.05)"},
           {"ramp-time", "S", "--data: ramp from rest to x[0] for records not starting at 0"},
+          {"start", "auto|ramp|hold", "how the model reaches x[0] before the record: ramp from rest, or ramp and hold (a relaxed preload); auto: hold when |x[0]| > 5% of the record's reach"},
           {"quiet", nullptr, "no table on stdout"},
       },
       "Model: the loop is driven from rest; steps per cycle (from 128) and cycles (from 4)\n"

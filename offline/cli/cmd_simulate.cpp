@@ -23,6 +23,7 @@ int run_simulate(int argc, char **argv) {
           {"out", "FILE", "output CSV: time,displacement,force[,force_measured]", true},
           {"ramp-time", "S", "duration of the ramp from rest to x[0] when the record does not "
                              "start at 0 (default: automatic)"},
+          {"start", "auto|ramp|hold", "how the model reaches x[0] before the record: ramp from rest, or ramp and hold (a relaxed preload); auto: hold when |x[0]| > 5% of the record's reach"},
           {"quiet", nullptr, "print nothing on success"},
       },
       "The output carries the input's units comment; force is the model force.\n"
@@ -51,8 +52,9 @@ int run_simulate(int argc, char **argv) {
       "input: " + in_path + " (sha256 " + rec.sha256 + ")",
   };
   if (grid.first_sample > 0)
-    comments.push_back("ramp from rest to x[0] over " + std::to_string(grid.first_sample) +
-                       " steps before the record");
+    comments.push_back(std::string(grid.held ? "ramp from rest to x[0], then a hold there,"
+                                             : "ramp from rest to x[0]") +
+                       " over " + std::to_string(grid.first_sample) + " steps before the record");
   if (!rec.units.empty()) comments.push_back(units_comment(rec.units));
   std::vector<CsvColumn> cols = {{"time", &rec.t}, {"displacement", &rec.x}, {"force", &F}};
   if (!rec.F.empty()) cols.push_back({"force_measured", &rec.F});

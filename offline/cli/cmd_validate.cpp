@@ -37,6 +37,7 @@ int run_validate(int argc, char **argv) {
           {"data", "FILE", "measured CSV (time,displacement,force)", true, true},
           {"out", "FILE", "write the figures as JSON (\"error\" = overall, \"files\" = per file)"},
           {"ramp-time", "S", "ramp duration for records not starting at 0 (default: automatic)"},
+          {"start", "auto|ramp|hold", "how the model reaches x[0] before the record: ramp from rest, or ramp and hold (a relaxed preload); auto: hold when |x[0]| > 5% of the record's reach"},
           {"quiet", nullptr, "do not print the table"},
       },
       "overall error = sqrt(sum J / sum J0) over all files.\n"
@@ -52,7 +53,8 @@ int run_validate(int argc, char **argv) {
   // Read every file first: an input error anywhere stops before any work.
   std::vector<Record> recs;
   for (const std::string &path : a.all("data")) recs.push_back(read_record_csv(path));
-  const Preprocess pre = preprocess_from(a);
+  Preprocess pre = preprocess_from(a);
+  resolve_force_sign(pre, recs, a.has("quiet"));
   apply_preprocess(pre, recs, true);
 
   std::vector<MisfitNorms> norms;

@@ -19,6 +19,7 @@ std::vector<OptionSpec> fit_option_specs(std::vector<OptionSpec> extra) {
       {"alpha0", "A", "alpha of the STS start, eq. (26) (default 0.2)"},
       {"fit-from", "S", "fit only samples from t0 + S on (stabilized cycles)"},
       {"ramp-time", "S", "ramp from rest to x[0] for records not starting at 0 (default auto)"},
+      {"start", "auto|ramp|hold", "how the model reaches x[0] before the record: ramp from rest, or ramp and hold (a relaxed preload); auto: hold when |x[0]| > 5% of the record's reach"},
       {"free", "LIST", "parameters to fit, comma separated (default K0,Kpa,Kr,C0,alpha)"},
       {"reg-weight", "W", "Tikhonov term of eq. (11): R_i = W / |p0_i| toward the start p0"},
       {"max-iter", "N", "optimizer iteration limit (default 200)"},
@@ -62,6 +63,7 @@ FitSetup parse_fit_setup(const Args &a) {
   if (!(fs.alpha0 > 0.0 && fs.alpha0 < 1.0)) throw UsageError("--alpha0 must be in (0,1)");
   for (const std::string &path : a.all("data")) fs.recs.push_back(read_record_csv(path));
   fs.pre = preprocess_from(a);
+  resolve_force_sign(fs.pre, fs.recs, a.has("quiet"));
   apply_preprocess(fs.pre, fs.recs, true);
   fs.init = a.get("init", "sts");
   if (fs.init == "sts") {
@@ -165,6 +167,7 @@ nlohmann::ordered_json fit_result_json(const IdentifyResult &r, const FitSetup &
                          {"Ff", fs.sts.Ff}};
   j["options"] = {{"fit_from", fs.opt.misfit.fit_from},
                   {"ramp_time", fs.opt.misfit.sim.ramp_time},
+                  {"start", start_mode_name(fs.opt.misfit.sim.start)},
                   {"reg_weight", fs.reg_weight}};
   j["preprocessing"] = preprocess_json(fs.pre);
   j["tool"] = tool_version();

@@ -34,6 +34,9 @@ struct FitSetup {
 std::vector<OptionSpec> preprocess_option_specs();
 CommandSpec with_preprocess_options(CommandSpec spec);  // spec + the options above
 Preprocess preprocess_from(const Args &a);
+// Decides an `auto` force sign from the fit records (force_sign_of) and says
+// so on stderr when it flips; a given sign is kept.
+void resolve_force_sign(Preprocess &pp, const std::vector<Record> &fit, bool quiet);
 
 // The common options: --data, --cells, --method, --init, --alpha0,
 // --fit-from, --ramp-time, --free, --reg-weight, --max-iter, --quiet,

@@ -152,10 +152,16 @@ std::string softening_contradiction(const ExtModel &fitted, const std::vector<Re
 
 double xcorr_lag(const Record &rec, const Eigen::VectorXd &F, int max_lag) {
   const long n = (long)rec.F.size();
-  auto corr = [&](int lag) {  // sum F_meas[i] F_model[i - lag]
+  // Both forces taken from the model's start level: a preloaded record's
+  // static force would otherwise make the sum a near-constant whose edge
+  // terms, not the dynamics, set the peak. (For a record that starts at rest
+  // at 0 this is 0. Removing the means instead moved the lags of step
+  // records and refused refgen's delay seed 6, which the sum names.)
+  const double F0 = F.size() > 0 ? F[0] : 0.0;
+  auto corr = [&](int lag) {  // sum (F_meas[i] - F0) (F_model[i - lag] - F0)
     double s = 0.0;
     for (long i = std::max<long>(0, lag); i < n && i - lag < n; ++i)
-      s += rec.F[(size_t)i] * F[(Eigen::Index)(i - lag)];
+      s += (rec.F[(size_t)i] - F0) * (F[(Eigen::Index)(i - lag)] - F0);
     return s / (double)(n - std::abs(lag));
   };
   int best = 0;

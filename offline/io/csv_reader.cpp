@@ -3,7 +3,8 @@
 // Format: optional '#' comment lines (one may be "# units: ..."), one header
 // line naming the columns (time, displacement, force; any order, case and
 // surrounding blanks ignored, extra columns ignored), then numeric rows with
-// as many fields as the header. CRLF line ends and trailing blank lines are
+// as many fields as the header. Fields are separated by ',' or, as the
+// header shows, by ';' or tabs, where numbers may have a decimal comma. CRLF line ends and trailing blank lines are
 // accepted. Every error names the file and line (and the column).
 //
 // Test rigs name their channels in many ways; a column is recognized by its
@@ -52,11 +53,24 @@ bool istarts_with(std::string_view s, std::string_view prefix) {
   return true;
 }
 
-void split(std::string_view line, std::vector<std::string_view> &out) {
+// The field separator, from the header line: the most frequent of ',', ';'
+// and tab (a ';' or tab file may write decimal commas, as European rigs do).
+char separator_of(std::string_view header) {
+  size_t n[3] = {0, 0, 0};
+  const char seps[3] = {',', ';', '\t'};
+  for (char c : header)
+    for (int k = 0; k < 3; ++k) n[k] += c == seps[k];
+  int best = 0;
+  for (int k = 1; k < 3; ++k)
+    if (n[k] > n[best]) best = k;
+  return seps[best];
+}
+
+void split(std::string_view line, char sep, std::vector<std::string_view> &out) {
   out.clear();
   size_t start = 0;
   for (;;) {
-    const size_t comma = line.find(',', start);
+    const size_t comma = line.find(sep, start);
     if (comma == std::string_view::npos) {
       out.push_back(line.substr(start));
       return;
@@ -91,8 +105,14 @@ int column_role(std::string name) {
 
 enum class NumStatus { ok, not_a_number, out_of_range };
 
-NumStatus parse_double(std::string_view s, double &v) {
+NumStatus parse_double(std::string_view s, double &v, char sep = ',') {
   s = clean_cell(s);
+  std::string dotted;
+  if (sep != ',' && s.find(',') != std::string_view::npos && s.find('.') == std::string_view::npos) {
+    dotted.assign(s);  // a decimal comma: "0,125"
+    dotted[dotted.find(',')] = '.';
+    s = dotted;
+  }
   if (!s.empty() && s.front() == '+') s.remove_prefix(1);
   if (s.empty()) return NumStatus::not_a_number;
   const char *b = s.data(), *e = s.data() + s.size();
@@ -129,6 +149,7 @@ Record parse_record_csv(const std::string &bytes, const std::string &path,
   static const char *const kNames[3] = {"time", "displacement", "force"};
   int col[3] = {-1, -1, -1};
   size_t n_fields = 0;
+  char sep = ',';
   size_t header_line = 0;
   size_t first_blank_after_header = 0;
   size_t line_no = 0;
@@ -159,13 +180,14 @@ Record parse_record_csv(const std::string &bytes, const std::string &path,
 
     if (header_line == 0) {  // ---- header
       header_line = line_no;
-      split(t, fields);
+      sep = separator_of(t);
+      split(t, sep, fields);
       n_fields = fields.size();
       bool all_numeric = true;
       for (size_t i = 0; i < fields.size(); ++i) {
         const std::string name = lower(clean_cell(fields[i]));
         double dummy;
-        if (parse_double(fields[i], dummy) != NumStatus::ok) all_numeric = false;
+        if (parse_double(fields[i], dummy, sep) != NumStatus::ok) all_numeric = false;
         const int k = column_role(name);
         if (k >= 0) {
           if (col[k] >= 0)
@@ -194,7 +216,7 @@ Record parse_record_csv(const std::string &bytes, const std::string &path,
     if (first_blank_after_header != 0)
       ctx.fail(first_blank_after_header, "blank line inside the data (only trailing blank lines "
                                          "are allowed)");
-    split(t, fields);
+    split(t, sep, fields);
     if (fields.size() != n_fields)
       ctx.fail(line_no, std::to_string(fields.size()) + " field" +
                             (fields.size() == 1 ? "" : "s") + ", but the header has " +
@@ -203,7 +225,7 @@ Record parse_record_csv(const std::string &bytes, const std::string &path,
     for (int k = 0; k < 3; ++k) {
       if (col[k] < 0) continue;
       const std::string_view cell = fields[(size_t)col[k]];
-      const NumStatus s = parse_double(cell, v[k]);
+      const NumStatus s = parse_double(cell, v[k], sep);
       if (s == NumStatus::not_a_number)
         ctx.fail(line_no, std::string("column '") + kNames[k] + "': non-numeric value " +
                               quoted(clean_cell(cell)));

@@ -13,40 +13,81 @@
 
 namespace rtb {
 
+const char *start_mode_name(StartMode m) {
+  return m == StartMode::ramp ? "ramp" : m == StartMode::hold ? "hold" : "auto";
+}
+
+bool holds_start(const Record &rec, const SimOptions &opt) {
+  if (opt.start != StartMode::automatic) return opt.start == StartMode::hold;
+  // A start within 5% of the record's reach is the rig's zero plus noise: the
+  // ramp (tiny) and the hold give the same force. Beyond it the record starts
+  // from a preload, which a rig reaches and holds before it records.
+  double reach = 0.0;
+  for (double x : rec.x) reach = std::max(reach, std::fabs(x));
+  return std::fabs(rec.x[0]) > 0.05 * reach;
+}
+
+namespace {
+
+// The ramp 0 -> x0 (the paper's first loading, section 5.5). Auto duration:
+// |x0| at the record's median speed, between 10 and 10000 steps of the
+// record's first dt.
+void append_ramp(const Record &rec, const SimOptions &opt, DriveGrid &g) {
+  const size_t n = rec.x.size();
+  const double x0 = rec.x[0], dt0 = rec.t[1] - rec.t[0];
+  double T = opt.ramp_time;
+  if (T <= 0.0) {
+    std::vector<double> speed;
+    for (size_t i = 1; i < n; ++i)
+      speed.push_back(std::fabs(rec.x[i] - rec.x[i - 1]) / (rec.t[i] - rec.t[i - 1]));
+    std::nth_element(speed.begin(), speed.begin() + speed.size() / 2, speed.end());
+    const double v = speed[speed.size() / 2];
+    T = v > 0.0 ? std::fabs(x0) / v : 10.0 * dt0;
+    T = std::min(std::max(T, 10.0 * dt0), 10000.0 * dt0);
+  }
+  const int m = std::max(1, (int)std::ceil(T / dt0));
+  for (int i = 1; i <= m; ++i) {
+    g.x.push_back(x0 * i / m);
+    g.dt.push_back(T / m);
+  }
+}
+
+// x0 held for ~1e5 s: steps growing 2x from the record's dt to the
+// library's largest (RTB_DT_MAX), then 100 of those. Every dashpot, Maxwell
+// branch and spectrum branch relaxes as the stepper integrates it (a power-law
+// dashpot keeps ~C0 (C0 / (Kr t))^(alpha/(1-alpha)) of its force, e.g. 0.2%
+// of a 1000 N load at alpha 0.15); a friction-like one (alpha -> 0) keeps its
+// locked-in force, as the real device does. Being ordinary steps, the hold is
+// inside the exact adjoint.
+void append_hold(const Record &rec, DriveGrid &g) {
+  const double x0 = rec.x[0];
+  double h = rec.t[1] - rec.t[0];
+  for (; h < RTB_DT_MAX; h *= 2.0) {
+    g.x.push_back(x0);
+    g.dt.push_back(h);
+  }
+  for (int i = 0; i < 100; ++i) {
+    g.x.push_back(x0);
+    g.dt.push_back(RTB_DT_MAX);
+  }
+  g.held = true;
+}
+
+}  // namespace
+
 DriveGrid make_drive_grid(const Record &rec, const SimOptions &opt) {
   DriveGrid g;
-  const size_t n = rec.x.size();
-  double x0 = rec.x[0];
   // The model starts at rest at x = 0 (eq. (3): y(0) = 0). A record that
-  // starts elsewhere is preceded by a linear ramp from 0 to x[0] (the paper's
-  // first loading, section 5.5). Auto duration: |x0| at the record's median
-  // speed, between 10 and 10000 steps of the record's first dt.
-  if (x0 != 0.0) {
-    const double dt0 = rec.t[1] - rec.t[0];
-    double T = opt.ramp_time;
-    if (T <= 0.0) {
-      std::vector<double> speed;
-      for (size_t i = 1; i < n; ++i)
-        speed.push_back(std::fabs(rec.x[i] - rec.x[i - 1]) / (rec.t[i] - rec.t[i - 1]));
-      std::nth_element(speed.begin(), speed.begin() + speed.size() / 2, speed.end());
-      const double v = speed[speed.size() / 2];
-      T = v > 0.0 ? std::fabs(x0) / v : 10.0 * dt0;
-      T = std::min(std::max(T, 10.0 * dt0), 10000.0 * dt0);
-    }
-    const int m = std::max(1, (int)std::ceil(T / dt0));
-    g.x.push_back(0.0);
-    g.dt.push_back(0.0);
-    for (int i = 1; i <= m; ++i) {
-      g.x.push_back(x0 * i / m);
-      g.dt.push_back(T / m);
-    }
-    g.first_sample = m;
-  } else {
-    g.x.push_back(x0);
-    g.dt.push_back(0.0);
-    g.first_sample = 0;
+  // starts elsewhere is preceded by a ramp from 0 to x[0], and, when the
+  // start is held (StartMode), by a long hold there.
+  g.x.push_back(0.0);
+  g.dt.push_back(0.0);
+  if (rec.x[0] != 0.0) {
+    append_ramp(rec, opt, g);
+    if (holds_start(rec, opt)) append_hold(rec, g);
   }
-  for (size_t i = 1; i < n; ++i) {
+  g.first_sample = (int)g.x.size() - 1;
+  for (size_t i = 1; i < rec.x.size(); ++i) {
     g.x.push_back(rec.x[i]);
     g.dt.push_back(rec.t[i] - rec.t[i - 1]);
   }
@@ -120,7 +161,12 @@ Trajectory run_forward(const rtb_params &p, const DriveGrid &grid, bool keep_tra
   // start with a velocity jump: start the input-velocity memory (inertia
   // term) at the record's initial velocity, not at rest, so that m a has no
   // spurious impulse m v0/dt at the first sample.
-  if (grid.first_sample == 0 && n > 1) s.vx = (grid.x[1] - grid.x[0]) / grid.dt[1];
+  // The same for a record that starts from a hold. The input velocity is not
+  // a function of the parameters, so resetting it leaves the adjoint exact.
+  const size_t first = (size_t)grid.first_sample;
+  const bool reset_vx = (first == 0 || grid.held) && first + 1 < n;
+  const double v0 = reset_vx ? (grid.x[first + 1] - grid.x[first]) / grid.dt[first + 1] : 0.0;
+  if (reset_vx && first == 0) s.vx = v0;
   tr.force.resize(n);
   tr.force[0] = s.force;
   const size_t S = tr.stride();
@@ -140,6 +186,7 @@ Trajectory run_forward(const rtb_params &p, const DriveGrid &grid, bool keep_tra
     if (st == RTB_NOT_CONVERGED) ++tr.not_converged;
     tr.newton_iterations += next.last_iterations;
     s = next;
+    if (reset_vx && i == first) s.vx = v0;
     tr.force[i] = F;
     if (keep_trace) store(s, stg, tr.n_stages, p.cells, tr.branches, &tr.data[i * S]);
   }

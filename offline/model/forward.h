@@ -12,12 +12,16 @@
 namespace rtb {
 
 // Input history actually driven through the stepper: an optional ramp from
-// rest to x[0] (not part of the misfit) followed by the record's samples.
+// rest to x[0] and an optional hold there (neither part of the misfit),
+// followed by the record's samples.
 struct DriveGrid {
   std::vector<double> x;     // displacement at every step end
   std::vector<double> dt;    // step lengths (dt[0] unused: initial state)
   int first_sample = 0;      // index in x of the record's sample 0
+  bool held = false;         // x[0] was held before the record (StartMode::hold)
 };
+// Whether `opt` holds x[0] before this record (StartMode::automatic resolved).
+bool holds_start(const Record &rec, const SimOptions &opt);
 DriveGrid make_drive_grid(const Record &rec, const SimOptions &opt);
 
 // One implicit stage as the linearization sees it (views into Trajectory).

@@ -8,7 +8,8 @@
 namespace rtb {
 
 bool Preprocess::active() const {
-  return time_scale != 1.0 || disp_scale != 1.0 || force_scale != 1.0 || lowpass_hz > 0.0 ||
+  return time_scale != 1.0 || disp_scale != 1.0 || force_scale != 1.0 || force_sign < 0 ||
+         lowpass_hz > 0.0 ||
          decimate > 1 || !masks.empty() || mask_after_reversal > 0.0 || !weights.empty();
 }
 
@@ -148,6 +149,27 @@ void mask_window(Record &r, double t0, double t1) {
 
 }  // namespace
 
+int force_sign_of(const std::vector<Record> &recs, double *corr) {
+  double sxf = 0.0, sxx = 0.0, sff = 0.0;
+  for (const Record &r : recs) {
+    const size_t n = std::min(r.x.size(), r.F.size());
+    if (n == 0) continue;
+    double mx = 0.0, mf = 0.0;
+    for (size_t i = 0; i < n; ++i) mx += r.x[i], mf += r.F[i];
+    mx /= (double)n;
+    mf /= (double)n;
+    for (size_t i = 0; i < n; ++i) {
+      const double dx = r.x[i] - mx, df = r.F[i] - mf;
+      sxf += dx * df;
+      sxx += dx * dx;
+      sff += df * df;
+    }
+  }
+  const double c = sxx > 0.0 && sff > 0.0 ? sxf / std::sqrt(sxx * sff) : 0.0;
+  if (corr) *corr = c;
+  return c < -0.2 ? -1 : 1;
+}
+
 void apply_preprocess(const Preprocess &pp, std::vector<Record> &recs, bool use_weights) {
   if (use_weights && !pp.weights.empty() && pp.weights.size() != recs.size())
     throw InputError("--weight given " + std::to_string(pp.weights.size()) +
@@ -156,7 +178,8 @@ void apply_preprocess(const Preprocess &pp, std::vector<Record> &recs, bool use_
     Record &r = recs[k];
     for (double &v : r.t) v *= pp.time_scale;
     for (double &v : r.x) v *= pp.disp_scale;
-    for (double &v : r.F) v *= pp.force_scale;
+    const double fs = pp.force_sign < 0 ? -pp.force_scale : pp.force_scale;
+    for (double &v : r.F) v *= fs;
     if (pp.lowpass_hz > 0.0) lowpass_record(r, pp.lowpass_hz);
     if (pp.decimate > 1) decimate_record(r, pp.decimate, pp.lowpass_hz);
     if (!pp.masks.empty() || pp.mask_after_reversal > 0.0) {
@@ -181,6 +204,7 @@ nlohmann::ordered_json preprocess_json(const Preprocess &pp) {
   j["time_scale"] = pp.time_scale;
   j["displacement_scale"] = pp.disp_scale;
   j["force_scale"] = pp.force_scale;
+  j["force_sign"] = pp.force_sign < 0 ? -1 : 1;
   j["lowpass_hz"] = pp.lowpass_hz;
   j["lowpass"] = pp.lowpass_hz > 0.0 ? "2nd-order Butterworth, forward-backward (zero phase)" : "off";
   j["decimate"] = pp.decimate;

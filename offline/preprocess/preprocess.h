@@ -23,6 +23,11 @@ struct TimeWindow {
 struct Preprocess {
   // Column scale factors, applied first (e.g. in -> mm is 25.4, kip -> kN 4.448).
   double time_scale = 1.0, disp_scale = 1.0, force_scale = 1.0;
+  // Sign convention of the force against the displacement: +1 as recorded,
+  // -1 flipped (a compression-positive load cell on an extension-positive
+  // stroke), 0 not decided yet (resolve_force_sign; apply_preprocess then
+  // keeps the sign).
+  int force_sign = 0;
   // Zero-phase low-pass of the force: a 2nd-order Butterworth run forward and
   // backward (4th-order magnitude, no phase lag, so it cannot pose as a delay).
   // 0: off. Needs a (nearly) uniform time grid.
@@ -44,6 +49,13 @@ struct Preprocess {
 
 // Parses "T0:T1" (seconds); throws InputError with the option name on error.
 TimeWindow parse_time_window(const std::string &s, const std::string &option);
+
+// A passive specimen's force rises with its displacement (a positive static
+// stiffness, and a positive storage stiffness at every frequency): the
+// records' summed covariance of x and F is positive. Returns -1 when the
+// records say the opposite clearly (correlation below -0.2), else +1;
+// *corr (may be null) receives the correlation.
+int force_sign_of(const std::vector<Record> &recs, double *corr = nullptr);
 
 // Applies `pp` to the records in place: scaling, filtering, masks; weights
 // are applied only when `use_weights` (fit records, not held-out ones).

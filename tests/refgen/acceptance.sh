@@ -6,7 +6,7 @@
 # summary "single: a/b, combined/new/out-of-vocabulary: c/d, wrong physical
 # names: e".
 #
-#   tests/refgen/acceptance.sh [--set quick|singles|hard|definitions|all] [--cases "E:S ..."]
+#   tests/refgen/acceptance.sh [--set quick|singles|hard|definitions|conventions|all] [--cases "E:S ..."]
 #                              [--duration S] [--timeout S] [--out DIR]
 #                              [--build DIR] [--keep] [-- DIAGNOSE_OPTIONS...]
 #
@@ -16,8 +16,10 @@
 # new words, the low-pass definition of the delay and out-of-vocabulary
 # (hum, drift, clipping, force spikes) on seeds 1-2; definitions = other
 # definitions of four words (quadratic asymmetry, tanh softening, an
-# erf-shaped Mullins loss, a fifth-order stiffening) on seeds 1-2; all =
-# singles + hard + definitions.
+# erf-shaped Mullins loss, a fifth-order stiffening) on seeds 1-2;
+# conventions = rig conventions that are not effects (records about a held
+# preload; a compression-positive load cell), alone and under words, on
+# seeds 1-2; all = singles + hard + definitions + conventions.
 # Meant to run in the background: nohup tests/refgen/acceptance.sh > acc.log 2>&1 &
 # Output: DIR/table.txt, DIR/results.jsonl, DIR/CASE/{truth,report}.json and
 # diagnose.log (records deleted unless --keep). Exit status 0 when every case ran.
@@ -34,7 +36,7 @@ out=""
 keep=0
 extra=()
 
-usage() { sed -n '2,20p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'; exit "${1:-2}"; }
+usage() { sed -n '2,25p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'; exit "${1:-2}"; }
 
 while [ $# -gt 0 ]; do
   case "$1" in
@@ -55,6 +57,8 @@ singles="cubic_stiffness asymmetry maxwell viscous backlash backlash_held mullin
 hard="delay,asymmetry maxwell,offset backlash,cubic_stiffness viscous,cubic_stiffness inertia,backlash delay_lowpass
       slack relaxation_spectrum friction_asymmetry hum drift clipping spikes"
 definitions="asymmetry_quadratic softening_tanh mullins_erf stiffening_quintic"
+conventions="preload preload,backlash_held preload,maxwell preload,cubic_stiffness preload,inertia
+             compression_positive compression_positive,backlash compression_positive,delay"
 on_seeds() {  # on_seeds "WORDS" "SEEDS"
   local w s
   for s in $2; do for w in $1; do printf '%s:%s ' "$w" "$s"; done; done
@@ -66,7 +70,9 @@ if [ -z "$cases" ]; then
     singles) cases="$(on_seeds "none $singles" "1 2")" ;;
     hard) cases="$(on_seeds "$hard" "1 2")" ;;
     definitions) cases="$(on_seeds "$definitions" "1 2")" ;;
-    all) cases="$(on_seeds "none $singles" "1 2") $(on_seeds "$hard" "1 2") $(on_seeds "$definitions" "1 2")" ;;
+    conventions) cases="$(on_seeds "$conventions" "1 2")" ;;
+    all) cases="$(on_seeds "none $singles" "1 2") $(on_seeds "$hard" "1 2") $(on_seeds "$definitions" "1 2")
+                $(on_seeds "$conventions" "1 2")" ;;
     *) echo "acceptance.sh: unknown set $set_name" >&2; usage ;;
   esac
 fi

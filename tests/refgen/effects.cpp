@@ -18,7 +18,9 @@ const std::vector<std::string> &effect_names() {
       "friction_asymmetry",          "hum",       "drift",     "clipping",  "spikes",
       // other definitions of the same words
       "asymmetry_quadratic", "softening_tanh", "mullins_erf", "stiffening_quintic",
-      "delay_displacement"};
+      "delay_displacement",
+      // a rig convention, not an effect: the records oscillate about a held preload
+      "preload", "compression_positive"};
   return names;
 }
 
@@ -29,6 +31,7 @@ std::string expected_word(const std::string &effect) {
   if (effect == "softening_tanh") return "softening";
   if (effect == "mullins_erf") return "mullins";
   if (effect == "stiffening_quintic") return "cubic_stiffness";
+  if (effect == "preload" || effect == "compression_positive") return "none";
   if (effect == "hum" || effect == "drift" || effect == "clipping" || effect == "spikes")
     return "unexplained";
   return effect;
@@ -112,6 +115,10 @@ void apply_effect(Scenario &sc, const std::string &e, Rng &rng) {
     s.mullins = rng.uniform(0.15, 0.3);
     s.mullins_erf = true;
   }
+  else if (e == "preload")  // held at 0.5-1.5 A before the records start, either side
+    c.preload = rng.sign() * rng.uniform(0.5, 1.5) * A;
+  else if (e == "compression_positive")  // the load cell's sign convention, not an effect
+    c.force_sign = -1.0;
   else if (e == "hum") {
     c.hum = rng.uniform(0.01, 0.02) * Fel;
     c.hum_phase = rng.uniform(0.0, kTwoPi);
@@ -135,6 +142,8 @@ void check_combination(const Scenario &sc) {
     throw std::invalid_argument(
         "a floating end (backlash, slack) cannot be combined with rate-dependent branches "
         "(maxwell, relaxation_spectrum, viscous)");
+  if (s.slack && sc.chain.preload != 0.0)
+    throw std::invalid_argument("slack records are one-sided from 0: no preload");
   if (s.slack && s.gap != Gap::none)
     throw std::invalid_argument("slack and backlash cannot be combined");
   int gaps = 0;

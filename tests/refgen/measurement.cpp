@@ -23,7 +23,7 @@ struct Servo {
 
 void servo_rates(const Chain &c, const Command &cmd, double t, double x, double v, double *dx,
                  double *dv) {
-  const double w = kTwoPi * c.servo_hz, u = cmd.value(t);
+  const double w = kTwoPi * c.servo_hz, u = c.preload + cmd.value(t);
   if (c.servo_order == 1) {
     *dx = w * (u - x);
     *dv = 0.0;
@@ -52,7 +52,7 @@ void advance(Servo &s, const Chain &c, const Command &cmd, double t1) {
 }
 
 Drive drive_of(const Servo &s, const Chain &c, const Command &cmd) {
-  const double w = kTwoPi * c.servo_hz, u = cmd.value(s.t);
+  const double w = kTwoPi * c.servo_hz, u = c.preload + cmd.value(s.t);
   Drive d;
   d.t = s.t;
   d.x = s.x;
@@ -100,9 +100,10 @@ Samples run_record(const Specimen &s, const Command &cmd, const Chain &c) {
   const size_t m = (size_t)std::max(1, c.substeps);
   const double h = c.dt / (double)m;
   // Force on the load cell and actuator position on the fine grid.
-  std::vector<double> F(1 + (n - 1) * m), x(F.size());
-  SpecimenState st = rest_state(s);
+  std::vector<double> F(1 + (n - 1) * m), x(F.size(), c.preload);
+  SpecimenState st = c.preload != 0.0 ? relaxed_state(s, c.preload) : rest_state(s);
   Servo sv;
+  sv.x = c.preload;
   F[0] = specimen_force(s, st, drive_of(sv, c, cmd));
   for (size_t j = 0; j + 1 < F.size(); ++j) {
     fine_step(s, c, cmd, st, sv, (double)j * h, h, 0);
@@ -127,7 +128,7 @@ Samples run_record(const Specimen &s, const Command &cmd, const Chain &c) {
     Fmax = std::fmax(Fmax, std::fabs(Fk));
     xmax = std::fmax(xmax, std::fabs(r.x_true[k]));
     const double p = kTwoPi * 50.0 * t + c.hum_phase;
-    r.F_clean[k] = Fk + c.offset + c.hum * (std::sin(p) + 0.3 * std::sin(3.0 * p));
+    r.F_clean[k] = c.force_sign * (Fk + c.offset + c.hum * (std::sin(p) + 0.3 * std::sin(3.0 * p)));
   }
   Rng rng(c.seed);
   r.x.resize(n);

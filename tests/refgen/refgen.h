@@ -102,6 +102,9 @@ struct Chain {
   double offset = 0.0;       // force sensor zero error [N]
   double hum = 0.0;          // 50 Hz mains hum amplitude on the force [N] (+30% at 150 Hz)
   double hum_phase = 0.0;
+  double preload = 0.0;      // static actuator position the records oscillate about [mm];
+                             // the specimen has been held there (relaxed) before t = 0
+  double force_sign = 1.0;   // -1: a compression-positive load cell (force recorded negated)
   double clip = 0.0;         // load-cell saturation: |F| recorded at most this [N] (0 = off)
   double spikes = 0.0;       // acquisition glitches: size of isolated outlier samples [N]
   double spike_rate = 0.0;   // their probability per sample

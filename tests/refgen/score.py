@@ -7,6 +7,7 @@ tests/refgen/acceptance.sh.
 
 Verdict rules (issue #10):
   plain (effect none)          correct iff cause is "none" and no cause is listed
+                               (also under a rig convention: preload, compression_positive)
   single vocabulary word       correct iff cause (the first name) is the word
                                (both clearance forms -> "backlash")
   new word                     the same, counted with the combined cases
@@ -31,7 +32,11 @@ def named_words(report):
     return [w for w in words if w and w not in NOT_NAMES]
 
 
+CONVENTIONS = {"preload", "compression_positive"}  # rig conventions, not effects: expected word "none"
+
+
 def category(effects):
+    effects = [e for e in effects if e not in CONVENTIONS] or ["none"]
     if effects == ["none"]:
         return "plain"
     if len(effects) > 1:
@@ -44,6 +49,9 @@ def category(effects):
 
 
 def judge(effects, expected, report):
+    if any(e in CONVENTIONS for e in effects):  # judged as the effects without the convention
+        expected = [w for e, w in zip(effects, expected) if e not in CONVENTIONS] or ["none"]
+        effects = [e for e in effects if e not in CONVENTIONS] or ["none"]
     cause = report.get("cause", "none")
     names = named_words(report)
     cat = category(effects)

@@ -16,6 +16,20 @@ SpecimenState rest_state(const Specimen &s) {
   return st;
 }
 
+SpecimenState relaxed_state(const Specimen &s, double x) {
+  SpecimenState st = rest_state(s);
+  const double d = std::min(s.half_gap, std::fabs(x));
+  st.xb = s.gap == Gap::none ? x : x - std::copysign(d, x);
+  st.xb_max = std::fabs(st.xb);
+  st.q.assign(s.branches.size(), st.xb);
+  // Dashpot forces 0: Kpa and the N springs Kr (the last to ground) carry
+  // one series force P, so the nodes step down by P/Kpa, then P/Kr each.
+  const double P = st.xb / (1.0 / s.Kpa + s.N / s.Kr);
+  for (int k = 0; k < s.N; ++k)
+    st.y[(size_t)k] = (k == 0 ? st.xb - P / s.Kpa : st.y[(size_t)k - 1] - P / s.Kr);
+  return st;
+}
+
 double stiffness_scale(const Specimen &s, double t) { return 1.0 + s.drift_rate * t; }
 
 double static_force(const Specimen &s, double x) {

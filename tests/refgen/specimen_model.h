@@ -33,6 +33,11 @@ struct SpecimenState {
 
 SpecimenState rest_state(const Specimen &s);
 
+// The specimen held at actuator position x for ever (a preload): every
+// dashpot and Maxwell branch relaxed, the end in contact on the side it was
+// pushed from (x minus the half gap towards 0).
+SpecimenState relaxed_state(const Specimen &s, double x);
+
 // Stiffness multiplier at time t (thermal drift): 1 + drift_rate t.
 double stiffness_scale(const Specimen &s, double t);
 
