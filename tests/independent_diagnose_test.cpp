@@ -161,4 +161,16 @@ TEST(IndependentDiagnose, ForceSpikesAreUnexplainedAndNamed) {
   EXPECT_NE(d.R.verdict.find("spikes"), std::string::npos) << d.R.verdict;
 }
 
+// A creeping load-cell zero (out of vocabulary): an offset or a friction
+// asymmetry removed half of it on seeds 1-4 (session 14), leaving a slow
+// trend over time; no time-invariant word may take the name.
+TEST(IndependentDiagnose, CreepingForceZeroIsUnexplained) {
+  RTB_SKIP_UNDER_SANITIZERS();
+  const Diagnosed d = diagnose_refgen("zero_drift", 3);
+  EXPECT_EQ(d.R.cause, "unexplained") << d.R.verdict;
+  EXPECT_TRUE(d.R.causes.empty()) << d.R.verdict;
+  EXPECT_FALSE(d.R.withdrawn.empty()) << d.R.verdict;
+  EXPECT_NE(d.R.verdict.find("trend"), std::string::npos) << d.R.verdict;
+}
+
 #endif  // RTB_HAVE_OFFLINE

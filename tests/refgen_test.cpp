@@ -126,6 +126,19 @@ TEST(RefgenChain, CompressionPositiveLoadCellNegatesTheForce) {
   EXPECT_EQ(expected_word("preload"), "none");
 }
 
+// A creeping load-cell zero: the recorded force gains a ramp from 0 at the
+// start to zero_drift at the end, nothing else.
+TEST(RefgenChain, ZeroDriftIsALinearRampOfTheForceZero) {
+  Specimen s;
+  Chain c = clean_chain(5);
+  const Samples a = run_record(s, sine(0.5, 2.0, 0.5), c);
+  c.zero_drift = 8.0;
+  const Samples b = run_record(s, sine(0.5, 2.0, 0.5), c);
+  for (size_t k = 0; k < a.F.size(); ++k)
+    EXPECT_NEAR(b.F_clean[k] - a.F_clean[k], 8.0 * a.t[k] / 0.5, 1e-9);
+  EXPECT_EQ(expected_word("zero_drift"), "unexplained");
+}
+
 // The other definitions of the elastic words (session 13): the relaxed force
 // carries each closed form on top of the static law.
 TEST(RefgenEffects, OtherElasticDefinitionsAreTheirClosedForms) {

@@ -85,6 +85,12 @@ nlohmann::ordered_json diagnosis_json(const DiagnoseResult &R, const std::vector
     dropped.push_back({{"name", d.name}, {"error_holdout_without", d.error_without},
                        {"error_holdout_with", d.error_with}});
   j["dropped"] = dropped;
+  // Causes withdrawn because what they leave is a slow trend over time.
+  nlohmann::json withdrawn = nlohmann::json::array();
+  for (const Cause &c : R.withdrawn)
+    withdrawn.push_back({{"name", c.cand.name}, {"description", c.description},
+                         {"error_holdout", c.error_holdout}});
+  j["withdrawn"] = withdrawn;
   nlohmann::ordered_json clip = nlohmann::ordered_json::array();
   for (const ClippedRecord &c : R.clipping)
     clip.push_back({{"file", c.file},

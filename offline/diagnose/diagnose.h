@@ -48,6 +48,9 @@
 //                 or `unexplained` with the residual's signature (band, trend,
 //                 where in the cycle) when it is above the floor and no
 //                 candidate removes it: a wrong physical name is worse.
+//                 Causes whose own remaining residual is mostly a slow trend
+//                 over time are withdrawn: the vocabulary is time-invariant,
+//                 so they only compensate a drift (`withdrawn` in the JSON).
 // Basin check: plain RT is nested in every candidate. If an insignificant
 // candidate fits below 0.9x the baseline, the baseline is refitted from its
 // RT part and the first round runs once more.
@@ -211,6 +214,10 @@ struct DiagnoseResult {
     double error_without = 0.0, error_with = 0.0;
   };
   std::vector<Dropped> dropped;
+  // Causes withdrawn in stage 6: what they leave is a slow trend over time
+  // (ResidualSignature trend or drift share above 0.3), which no
+  // time-invariant word explains; they would only compensate it.
+  std::vector<Cause> withdrawn;
   bool imposed = false;        // the causes were imposed (DiagnoseOptions::imposed)
   std::string cause = "none";  // causes[0]'s name, or "none" / "unexplained"
   bool residual_above_floor = false;  // after the causes found

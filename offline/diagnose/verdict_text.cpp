@@ -30,10 +30,20 @@ std::string verdict_text(const DiagnoseResult &R) {
     v += "unexplained (" + spiked + ")";
   } else if (R.causes.empty() && R.cause == "unexplained") {
     char b[200];
-    std::snprintf(b, sizeof b, "unexplained (residual %.1fx the noise floor of %s; no candidate removes it): ",
+    std::snprintf(b, sizeof b, "unexplained (residual %.1fx the noise floor of %s; %s): ",
                   R.baseline_error_holdout / std::max(R.floor.error_holdout, 1e-300),
-                  pct(R.floor.error_holdout).c_str());
+                  pct(R.floor.error_holdout).c_str(),
+                  R.withdrawn.empty() ? "no candidate removes it" : "no time-invariant word removes it");
     v += b + R.signature.text;
+    if (!R.withdrawn.empty()) {
+      v += "; ";
+      for (size_t i = 0; i < R.withdrawn.size(); ++i) v += (i ? " + " : "") + R.withdrawn[i].cand.name;
+      std::snprintf(b, sizeof b,
+                    " would take it to %s but leave that trend: a time-invariant word only "
+                    "compensates it, so none is named",
+                    pct(R.withdrawn.back().error_holdout).c_str());
+      v += b;
+    }
   } else if (R.causes.empty()) {
     v += "none (the residual is at the noise floor of " + pct(R.floor.error_holdout) + ")";
   } else {

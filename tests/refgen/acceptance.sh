@@ -14,7 +14,7 @@
 # and mains hum on seed 1 (about 15 x 10-60 s); singles = every word of
 # the vocabulary, both clearance forms and plain on seeds 1-2; hard = pairs,
 # new words, the low-pass definition of the delay and out-of-vocabulary
-# (hum, drift, clipping, force spikes) on seeds 1-2; definitions = other
+# (hum, drift, clipping, force spikes, a creeping force zero) on seeds 1-2; definitions = other
 # definitions of four words (quadratic asymmetry, tanh softening, an
 # erf-shaped Mullins loss, a fifth-order stiffening) on seeds 1-2;
 # conventions = rig conventions that are not effects (records about a held
@@ -55,7 +55,7 @@ done
 
 singles="cubic_stiffness asymmetry maxwell viscous backlash backlash_held mullins delay inertia offset softening"
 hard="delay,asymmetry maxwell,offset backlash,cubic_stiffness viscous,cubic_stiffness inertia,backlash delay_lowpass
-      slack relaxation_spectrum friction_asymmetry hum drift clipping spikes"
+      slack relaxation_spectrum friction_asymmetry hum drift clipping spikes zero_drift"
 definitions="asymmetry_quadratic softening_tanh mullins_erf stiffening_quintic"
 conventions="preload preload,backlash_held preload,maxwell preload,cubic_stiffness preload,inertia
              compression_positive compression_positive,backlash compression_positive,delay"

@@ -15,7 +15,7 @@ const std::vector<std::string> &effect_names() {
       "none",     "cubic_stiffness", "asymmetry", "maxwell",  "viscous",
       "backlash", "backlash_held",   "mullins",   "delay",    "delay_lowpass", "inertia",
       "offset",   "softening",       "slack",     "relaxation_spectrum",
-      "friction_asymmetry",          "hum",       "drift",     "clipping",  "spikes",
+      "friction_asymmetry",          "hum",       "drift",     "clipping",  "spikes", "zero_drift",
       // other definitions of the same words
       "asymmetry_quadratic", "softening_tanh", "mullins_erf", "stiffening_quintic",
       "delay_displacement",
@@ -32,7 +32,8 @@ std::string expected_word(const std::string &effect) {
   if (effect == "mullins_erf") return "mullins";
   if (effect == "stiffening_quintic") return "cubic_stiffness";
   if (effect == "preload" || effect == "compression_positive") return "none";
-  if (effect == "hum" || effect == "drift" || effect == "clipping" || effect == "spikes")
+  if (effect == "hum" || effect == "drift" || effect == "clipping" || effect == "spikes" ||
+      effect == "zero_drift")
     return "unexplained";
   return effect;
 }
@@ -125,6 +126,8 @@ void apply_effect(Scenario &sc, const std::string &e, Rng &rng) {
   }
   else if (e == "drift")  // stiffness changes 4-8% linearly over each record
     s.drift_rate = rng.sign() * rng.uniform(0.04, 0.08) / T;
+  else if (e == "zero_drift")  // the load cell's zero creeps (warming amplifier) by 2-5%
+    c.zero_drift = rng.sign() * rng.uniform(0.02, 0.05) * Fel;
   else if (e == "clipping")  // the force channel saturates below the loops' peaks
     c.clip = rng.uniform(0.75, 0.9) * Fel;
   else if (e == "spikes") {  // one sample in 200-500 off by 5-15% of the elastic force

@@ -128,7 +128,8 @@ Samples run_record(const Specimen &s, const Command &cmd, const Chain &c) {
     Fmax = std::fmax(Fmax, std::fabs(Fk));
     xmax = std::fmax(xmax, std::fabs(r.x_true[k]));
     const double p = kTwoPi * 50.0 * t + c.hum_phase;
-    r.F_clean[k] = c.force_sign * (Fk + c.offset + c.hum * (std::sin(p) + 0.3 * std::sin(3.0 * p)));
+    const double zero = c.offset + c.zero_drift * t / cmd.duration;
+    r.F_clean[k] = c.force_sign * (Fk + zero + c.hum * (std::sin(p) + 0.3 * std::sin(3.0 * p)));
   }
   Rng rng(c.seed);
   r.x.resize(n);

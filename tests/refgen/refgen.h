@@ -100,6 +100,7 @@ struct Chain {
   double disp_delay = 0.0;   // displacement channel lag [s] (the force then leads)
   double force_lowpass_hz = 0.0;  // first-order low-pass of the force channel (amplifier) [Hz], 0 = off
   double offset = 0.0;       // force sensor zero error [N]
+  double zero_drift = 0.0;   // the force zero moves linearly from 0 to this over the record [N]
   double hum = 0.0;          // 50 Hz mains hum amplitude on the force [N] (+30% at 150 Hz)
   double hum_phase = 0.0;
   double preload = 0.0;      // static actuator position the records oscillate about [mm];

@@ -12,7 +12,7 @@ Verdict rules (issue #10):
                                (both clearance forms -> "backlash")
   new word                     the same, counted with the combined cases
   combination                  correct iff every expected word is named
-  out of vocabulary (hum, drift, clipping, spikes) correct iff cause is "unexplained"
+  out of vocabulary (hum, drift, clipping, spikes, zero_drift) correct iff cause is "unexplained"
 A named word that is not expected is a wrong name ("none" and
 "unexplained" never are).
 """
@@ -43,7 +43,7 @@ def category(effects):
         return "combined"
     if effects[0] in NEW_WORDS:
         return "new"
-    if effects[0] in ("hum", "drift", "clipping", "spikes"):
+    if effects[0] in ("hum", "drift", "clipping", "spikes", "zero_drift"):
         return "oov"
     return "single"
 
