@@ -158,27 +158,25 @@ Current accept_causes(Current cur, std::vector<CandidateOutcome> round_out, cons
   return cur;
 }
 
-// Every word of the vocabulary is time-invariant. When what the causes leave
+// Stage 6: the extended model's figures, the residual's signature when it
+// is above the floor, the verdict. Every word of the vocabulary is time-invariant. When what the causes leave
 // above the floor is mostly a slow trend over time (a drifting load-cell
 // zero or stiffness), they were fitted to compensate a drift in part, and
 // are withdrawn (refgen zero_drift: `offset` or `friction_asymmetry` on
 // seeds 1-4, each leaving a 46-76% trend; none of ~480 earlier reports
 // with a right word left one).
-bool leaves_a_trend(const Current &cur, const Context &cx, const DiagnoseResult &R) {
-  if (R.imposed || R.causes.empty() || !above_floor(cur, R, cx.opt)) return false;
-  const ResidualSignature s =
-      diag::residual_signature(cur.model, cx.all, R.residuals, cx.opt.misfit);
-  return s.trend_share > 0.3 || s.drift_share > 0.3;
-}
-
-// Stage 6: the extended model's figures, the residual's signature when it
-// is above the floor, the verdict.
 void report(const Current &base, const Current &ext, const Context &cx, DiagnoseResult &R) {
   const DiagnoseOptions &opt = cx.opt;
-  const bool withdraw = leaves_a_trend(ext, cx, R);
+  auto signature_of = [&](const Current &c) {
+    return diag::residual_signature(c.model, cx.all, R.residuals, opt.misfit);
+  };
+  if (above_floor(ext, R, opt)) R.signature = signature_of(ext);
+  const bool withdraw = !R.imposed && !R.causes.empty() &&
+                        (R.signature.trend_share > 0.3 || R.signature.drift_share > 0.3);
   if (withdraw) {
     R.withdrawn.swap(R.causes);
     R.extended_fit = ExtFitResult();
+    R.signature = above_floor(base, R, opt) ? signature_of(base) : ResidualSignature();
   }
   const Current &cur = withdraw ? base : ext;
   R.extended = cur.model;
@@ -188,8 +186,6 @@ void report(const Current &base, const Current &ext, const Context &cx, Diagnose
   R.extended_error_holdout_trimmed = cur.error_holdout_trimmed;
   R.extended_records = record_figures(R.extended, cx.fit, cx.holdout, opt.misfit);
   R.residual_above_floor = above_floor(cur, R, opt);
-  if (R.residual_above_floor)
-    R.signature = diag::residual_signature(R.extended, cx.all, R.residuals, opt.misfit);
   // Clipped or spiked records: what the model misses there is the rig, not
   // a word.
   const bool rig = !R.clipping.empty() || !R.spikes.empty();
