@@ -252,3 +252,81 @@ TEST(OtherCells, ARealLaterCauseIsKept) {
   EXPECT_EQ(j.after.model.p.cells, RTB_DEFAULT_CELLS);
   EXPECT_EQ(j.after.error_holdout, j.with.error_holdout);
 }
+
+// Stage 5d: a spectrum whose weight sits on its fastest branch is that
+// branch's word. The own generator's viscous records, the spectrum put on a
+// branch at 1.5 sample intervals (exponent 40, as refgen
+// viscous+cubic_stiffness_s14's joint fit left it), carrying the true
+// dashpot c = k tau.
+namespace {
+
+struct OneBranch {
+  int replaced = -1;
+  diag::Current before, after;
+  DiagnoseResult R;
+};
+
+OneBranch one_branch(const Scenario &sc, const ExtModel &m) {
+  const DiagSetup su(sc);
+  const std::vector<Candidate> causes = {word("relaxation_spectrum")};
+  OneBranch o;
+  o.before = diag::make_current(m, combined_spec(causes, su.cx.sc), causes, su.cx);
+  o.after = o.before;
+  Cause c;
+  c.cand = causes[0];
+  o.R.causes.push_back(c);
+  o.replaced = diag::spectrum_to_one_branch(o.after, su.cx, o.R);
+  return o;
+}
+
+}  // namespace
+
+TEST(SpectrumToOneBranch, ASpectrumOnAFastBranchIsALinearDashpot) {
+  const Scenario sc = hidden_effect_scenario("viscous", 5, 0.005, 4.0);
+  ExtModel m;
+  m.p = sc.truth.p;
+  const double dt = sc.fit[0].t[1] - sc.fit[0].t[0];
+  m.p.viscous_c = 0.0;
+  m.p.spec_tau_min = 1.5 * dt;
+  m.p.spec_tau_max = 4.0;
+  m.p.spec_exp = 40.0;
+  m.p.spec_k = sc.truth.p.viscous_c / m.p.spec_tau_min;
+  ASSERT_GT(diag::fastest_branch_share(m.p), 0.99);
+  const OneBranch o = one_branch(sc, m);
+  ASSERT_EQ(o.replaced, 0);
+  EXPECT_EQ(o.R.causes[0].cand.name, "viscous");
+  ASSERT_EQ(o.after.causes.size(), 1u);
+  EXPECT_EQ(o.after.causes[0].name, "viscous");
+  EXPECT_EQ(o.after.model.p.spec_k, 0.0);
+  EXPECT_NEAR(o.after.model.p.viscous_c, sc.truth.p.viscous_c, 0.1 * sc.truth.p.viscous_c);
+  EXPECT_LE(o.after.error_holdout_trimmed, 1.1 * o.before.error_holdout_trimmed);
+}
+
+// A spectrum with its weight spread over its branches stays a spectrum.
+TEST(SpectrumToOneBranch, ASpreadSpectrumStays) {
+  const Scenario sc = hidden_effect_scenario("relaxation_spectrum", 5, 0.005, 4.0);
+  ExtModel m;
+  m.p = sc.truth.p;
+  ASSERT_LT(diag::fastest_branch_share(m.p), 0.9);
+  const OneBranch o = one_branch(sc, m);
+  EXPECT_EQ(o.replaced, -1);
+  EXPECT_EQ(o.R.causes[0].cand.name, "relaxation_spectrum");
+  EXPECT_EQ(o.after.error_holdout, o.before.error_holdout);
+}
+
+// A spectrum on one slow branch, on Maxwell data: that branch is a Maxwell
+// branch, resolved by the sampling and clearly better than a dashpot.
+TEST(SpectrumToOneBranch, ASpectrumOnASlowBranchIsAMaxwellBranch) {
+  const Scenario sc = hidden_effect_scenario("maxwell", 5, 0.005, 4.0);
+  ExtModel m;
+  m.p = sc.truth.p;
+  m.p.maxwell_k = m.p.maxwell_tau = 0.0;
+  m.p.spec_tau_min = sc.truth.p.maxwell_tau;
+  m.p.spec_tau_max = 100.0 * sc.truth.p.maxwell_tau;
+  m.p.spec_exp = 40.0;
+  m.p.spec_k = sc.truth.p.maxwell_k;
+  const OneBranch o = one_branch(sc, m);
+  ASSERT_EQ(o.replaced, 0);
+  EXPECT_EQ(o.R.causes[0].cand.name, "maxwell");
+  EXPECT_NEAR(o.after.model.p.maxwell_tau, sc.truth.p.maxwell_tau, 0.1 * sc.truth.p.maxwell_tau);
+}

@@ -11,6 +11,8 @@
 #ifdef RTB_HAVE_OFFLINE
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <string>
 
@@ -33,8 +35,8 @@ struct Diagnosed {
 #define RTB_SKIP_UNDER_SANITIZERS() (void)0
 #endif
 
-Diagnosed diagnose_refgen(const std::string &effect, unsigned seed) {
-  const refgen::Scenario sc = refgen::make_scenario({effect}, seed, kDuration);
+Diagnosed diagnose_refgen(const std::vector<std::string> &effects, unsigned seed) {
+  const refgen::Scenario sc = refgen::make_scenario(effects, seed, kDuration);
   std::vector<rtb::Record> fit, hold;
   std::vector<refgen::Samples> held;
   for (size_t i = 0; i < sc.records.size(); ++i) {
@@ -54,10 +56,16 @@ Diagnosed diagnose_refgen(const std::string &effect, unsigned seed) {
   std::vector<const refgen::Samples *> hp;
   for (const refgen::Samples &s : held) hp.push_back(&s);
   d.noise_floor = refgen::noise_floor(hp);
+  std::string name;
+  for (const std::string &e : effects) name += (name.empty() ? "" : "+") + e;
   std::printf("[refgen-diag] %-10s seed %u -> %-14s baseline held-out %.2f%% (floor %.2f%%), %.1f s\n",
-              effect.c_str(), seed, d.R.cause.c_str(), 100 * d.R.baseline_error_holdout,
+              name.c_str(), seed, d.R.cause.c_str(), 100 * d.R.baseline_error_holdout,
               100 * d.noise_floor, d.R.wall_seconds);
   return d;
+}
+
+Diagnosed diagnose_refgen(const std::string &effect, unsigned seed) {
+  return diagnose_refgen(std::vector<std::string>{effect}, seed);
 }
 
 // Out of vocabulary: no cause, and the verdict names what it saw.
@@ -172,6 +180,28 @@ TEST(IndependentDiagnose, CreepingForceZeroIsUnexplained) {
   const Diagnosed d = diagnose_refgen("zero_drift", 3);
   expect_unexplained_naming(d, "trend");
   EXPECT_FALSE(d.R.withdrawn.empty()) << d.R.verdict;
+}
+
+// Two effects that pay only together (stage 5e): on seed 12 the asymmetry
+// alone gains 13% held out (a first cause needs 15%) and the delay's
+// cross-correlation, run against a baseline without the asymmetry, finds the
+// force leading; without the pair stage the verdict was `unexplained` at 12x
+// the floor. Both are named, at their true sizes, and the model reaches the
+// floor.
+TEST(IndependentDiagnose, DelayAndAsymmetryThatPayOnlyTogetherAreAPair) {
+  RTB_SKIP_UNDER_SANITIZERS();
+  const Diagnosed d = diagnose_refgen(std::vector<std::string>{"delay", "asymmetry"}, 12);
+  const refgen::Scenario sc = refgen::make_scenario({"delay", "asymmetry"}, 12, kDuration);
+  ASSERT_EQ(d.R.causes.size(), 2u) << d.R.verdict;
+  EXPECT_TRUE(d.R.causes[0].paired && d.R.causes[1].paired) << d.R.verdict;
+  std::vector<std::string> names = {d.R.causes[0].cand.name, d.R.causes[1].cand.name};
+  std::sort(names.begin(), names.end());
+  EXPECT_EQ(names, (std::vector<std::string>{"asymmetry", "delay"})) << d.R.verdict;
+  EXPECT_FALSE(d.R.extended.delay_lowpass) << "a pure lag, not a low-pass: " << d.R.verdict;
+  EXPECT_NEAR(d.R.extended.delay, sc.chain.delay, 0.05 * sc.chain.delay) << d.R.verdict;
+  EXPECT_NEAR(d.R.extended.p.k_asym, sc.specimen.asym, 0.05 * std::fabs(sc.specimen.asym))
+      << d.R.verdict;
+  EXPECT_LT(d.R.extended_error_holdout, 1.3 * d.noise_floor) << d.R.verdict;
 }
 
 #endif  // RTB_HAVE_OFFLINE

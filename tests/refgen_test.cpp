@@ -126,6 +126,37 @@ TEST(RefgenChain, CompressionPositiveLoadCellNegatesTheForce) {
   EXPECT_EQ(expected_word("preload"), "none");
 }
 
+// Band-limited noise (an anti-alias filter): the same level as the white
+// noise of the same seed, with the lag-1 correlation of a first-order
+// low-pass at the corner; the clean channels are untouched.
+TEST(RefgenChain, ColoredNoiseKeepsItsLevelAndIsCorrelated) {
+  Specimen s;
+  Chain c;
+  c.substeps = 5;
+  const Samples white = run_record(s, sine(0.5, 2.0, 8.0), c);
+  c.noise_hz = 100.0;
+  const Samples red = run_record(s, sine(0.5, 2.0, 8.0), c);
+  auto stats = [](const Samples &r, double &sd, double &rho) {
+    double s2 = 0.0, s11 = 0.0;
+    const size_t n = r.F.size();
+    for (size_t k = 0; k < n; ++k) {
+      const double e = r.F[k] - r.F_clean[k];
+      s2 += e * e;
+      if (k > 0) s11 += e * (r.F[k - 1] - r.F_clean[k - 1]);
+    }
+    sd = std::sqrt(s2 / (double)n);
+    rho = s11 / s2;
+  };
+  double sd_w, rho_w, sd_r, rho_r;
+  stats(white, sd_w, rho_w);
+  stats(red, sd_r, rho_r);
+  EXPECT_NEAR(sd_r, sd_w, 0.1 * sd_w);
+  EXPECT_LT(std::fabs(rho_w), 0.05);
+  EXPECT_NEAR(rho_r, std::exp(-6.283185307179586 * 100.0 * c.dt), 0.05);
+  for (size_t k = 0; k < red.F.size(); ++k) EXPECT_EQ(red.F_clean[k], white.F_clean[k]);
+  EXPECT_EQ(expected_word("colored_noise"), "none");
+}
+
 // A creeping load-cell zero: the recorded force gains a ramp from 0 at the
 // start to zero_drift at the end, nothing else.
 TEST(RefgenChain, ZeroDriftIsALinearRampOfTheForceZero) {

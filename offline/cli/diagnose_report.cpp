@@ -68,6 +68,7 @@ nlohmann::ordered_json causes_json(const DiagnoseResult &R) {
     e["size"] = sizes;
     e["gain"] = num(c.gain);
     e["error_holdout"] = num(c.error_holdout);
+    if (c.paired) e["paired"] = true;  // stage 5e: neither paid alone at the baseline
     a.push_back(e);
   }
   return a;
@@ -115,7 +116,11 @@ nlohmann::ordered_json diagnosis_json(const DiagnoseResult &R, const std::vector
                       {"sigma_holdout", R.floor.sigma_holdout},
                       {"baseline_ratio_holdout", num(R.baseline_error_holdout / R.floor.error_holdout)},
                       {"extended_ratio_holdout", num(R.extended_error_holdout / R.floor.error_holdout)},
-                      {"method", "1.4826 MAD of the 4th differences of the residual / sqrt(70)"}};
+                      {"noise_correlation", R.floor.correlation},
+                      {"method", R.floor.correlation > 0.0
+                                     ? "1.4826 MAD of the 4th differences of the residual at lags "
+                                       "1-4, fitted with band-limited noise (correlation a^|k|)"
+                                     : "1.4826 MAD of the 4th differences of the residual / sqrt(70)"}};
   j["displacement_filter"] = {{"cutoff_hz", R.denoise.cutoff_hz},
                               {"sigma_x", R.denoise.sigma_x},
                               {"sigma_F", R.denoise.sigma_F},

@@ -107,8 +107,44 @@ bool above_floor(const Current &c, const DiagnoseResult &R, const DiagnoseOption
          c.error_fit > opt.floor_ratio * R.floor.error_fit;
 }
 
-// Stages 5b-5d, then 3-5 again: accept the best eligible candidate (or the
-// imposed word), refit, drop what no longer pays, and look for the next
+// Stages 5b-5d for the round's best candidate: accept it, refit, reject it
+// if its gain was not its own, drop an earlier cause it made redundant.
+void accept_one(Current &cur, const CandidateOutcome &best, int round, const Context &cx,
+                DiagnoseResult &R) {
+  std::vector<Candidate> causes = cur.causes;
+  causes.push_back(best.cand);
+  const Current before = cur;
+  CandidateOutcome accepted = best;
+  cur = diag::make_current(best.fit.model, combined_spec(causes, cx.sc), causes, cx);
+  const bool refit = diag::refit_from_sts(cur, cx, accepted.fit);
+  if (refit) {
+    cur = diag::make_current(accepted.fit.model, cur.spec, causes, cx);
+    accepted.error_holdout = cur.error_holdout;
+  }
+  // A later cause's joint fit may also have left the basin the earlier
+  // causes were in, and the gain be the new basin's (refgen
+  // delay+asymmetry_s11: a third cause, an offset of 0.8 N on a 1300 N
+  // load, "gained" 50%): it too must pay against the model without it
+  // refitted from there.
+  const bool rejected =
+      !R.imposed &&
+      (((refit || round > 0 || diag::extends_spectrum(best.cand, before)) &&
+        diag::not_a_cause(cur, before, best.cand, cx, R)) ||
+       diag::other_cells_explain(cur, before, best.cand, cx, R));
+  if (!rejected) {
+    R.causes.push_back(diag::make_cause(accepted, before));
+    R.extended_fit = accepted.fit;
+  }
+  if (!R.imposed && !rejected) {
+    const int gone = diag::drop_redundant(cur, cx, R);
+    if (gone >= 0) R.causes.erase(R.causes.begin() + gone);
+    diag::spectrum_to_one_branch(cur, cx, R);
+    diag::revisit_definitions(cur, cx, R);
+  }
+}
+
+// Stages 5b-5e, then 3-5 again: accept the best eligible candidate (or the
+// imposed word), or a pair when no single word pays, and look for the next
 // cause at the extended model while the residual is above the floor.
 Current accept_causes(Current cur, std::vector<CandidateOutcome> round_out, const Context &cx,
                       DiagnoseResult &R) {
@@ -120,34 +156,11 @@ Current accept_causes(Current cur, std::vector<CandidateOutcome> round_out, cons
         R.imposed ? diag::imposed_cause(round_out, opt.imposed[(size_t)round])
                   : select_cause(round_out, opt.parsimony);
     R.candidates.insert(R.candidates.end(), round_out.begin(), round_out.end());
-    if (!best) break;
-    std::vector<Candidate> causes = cur.causes;
-    causes.push_back(best->cand);
-    const Current before = cur;
-    CandidateOutcome accepted = *best;
-    cur = diag::make_current(best->fit.model, combined_spec(causes, cx.sc), causes, cx);
-    const bool refit = diag::refit_from_sts(cur, cx, accepted.fit);
-    if (refit) {
-      cur = diag::make_current(accepted.fit.model, cur.spec, causes, cx);
-      accepted.error_holdout = cur.error_holdout;
-    }
-    // A later cause's joint fit may also have left the basin the earlier
-    // causes were in, and the gain be the new basin's (refgen
-    // delay+asymmetry_s11: a third cause, an offset of 0.8 N on a 1300 N
-    // load, "gained" 50%): it too must pay against the model without it
-    // refitted from there.
-    const bool rejected =
-        !R.imposed &&
-        (((refit || round > 0 || diag::extends_spectrum(best->cand, before)) &&
-          diag::not_a_cause(cur, before, best->cand, cx, R)) ||
-         diag::other_cells_explain(cur, before, best->cand, cx, R));
-    if (!rejected) {
-      R.causes.push_back(diag::make_cause(accepted, before));
-      R.extended_fit = accepted.fit;
-    }
-    if (!R.imposed && !rejected) {
-      const int gone = diag::drop_redundant(cur, cx, R);
-      if (gone >= 0) R.causes.erase(R.causes.begin() + gone);
+    if (best) {
+      accept_one(cur, *best, round, cx, R);
+    } else {
+      if (round > 0 || R.imposed || !diag::pair_of_causes(cur, round_out, cx, R)) break;
+      round = 1;  // the pair's second word was its trial round's
     }
     if (R.imposed ? (size_t)round + 1 >= n_imposed
                   : (round + 1 >= opt.max_causes || !above_floor(cur, R, opt)))
@@ -159,12 +172,13 @@ Current accept_causes(Current cur, std::vector<CandidateOutcome> round_out, cons
 }
 
 // Stage 6: the extended model's figures, the residual's signature when it
-// is above the floor, the verdict. Every word of the vocabulary is time-invariant. When what the causes leave
-// above the floor is mostly a slow trend over time (a drifting load-cell
-// zero or stiffness), they were fitted to compensate a drift in part, and
-// are withdrawn (refgen zero_drift: `offset` or `friction_asymmetry` on
-// seeds 1-4, each leaving a 46-76% trend; none of ~480 earlier reports
-// with a right word left one).
+// is above the floor, the verdict. Every word of the vocabulary is
+// time-invariant. When what the causes leave above the floor has a slow
+// trend over time (a drifting load-cell zero or stiffness) beyond what any
+// right word leaves (DiagnoseOptions::withdraw_trend_share), they were
+// fitted to compensate a drift in part, and are withdrawn (refgen
+// zero_drift: `offset` or `friction_asymmetry` on seeds 1-4 and 11, each
+// leaving a 23-76% trend).
 void report(const Current &base, const Current &ext, const Context &cx, DiagnoseResult &R) {
   const DiagnoseOptions &opt = cx.opt;
   auto signature_of = [&](const Current &c) {
@@ -172,7 +186,8 @@ void report(const Current &base, const Current &ext, const Context &cx, Diagnose
   };
   if (above_floor(ext, R, opt)) R.signature = signature_of(ext);
   const bool withdraw = !R.imposed && !R.causes.empty() &&
-                        (R.signature.trend_share > 0.3 || R.signature.drift_share > 0.3);
+                        (R.signature.trend_share > opt.withdraw_trend_share ||
+                         R.signature.drift_share > opt.withdraw_drift_share);
   if (withdraw) {
     R.withdrawn.swap(R.causes);
     R.extended_fit = ExtFitResult();

@@ -95,6 +95,20 @@ struct DiagnoseOptions {
   // eq. (27) error (noise_floor.h); above it, no candidate means `unexplained`.
   double floor_ratio = 1.3;
   int max_causes = 3;
+  // Stage 6: causes whose remaining residual (above the floor) is more than
+  // this share a + b t trend, or withdraw_drift_share a t F_model stiffness
+  // drift, are withdrawn: a time-invariant word only compensates a drift.
+  // Of 180 kept reports with a right word the largest trend share is 0.033
+  // and the largest drift share 0.037; refgen zero_drift leaves 0.23-0.76.
+  double withdraw_trend_share = 0.1;
+  double withdraw_drift_share = 0.3;
+  // Stage 5e (cause_pair.cpp): when no single word pays in the first round
+  // and the baseline is above pair_above_floor times the floor, the
+  // pair_leads first-round words with the largest held-out gains (at least
+  // pair_lead_gain) are each tried with a second word.
+  double pair_above_floor = 3.0;
+  int pair_leads = 2;
+  double pair_lead_gain = 0.05;
   // Stage 1: the friction start is tried when the STS start's baseline fit
   // error is above friction_start_above (damper: 47-48%), and its baseline
   // replaces the STS start's when its fit error is below
@@ -143,6 +157,10 @@ struct CandidateOutcome {
   double amplitude_z = 0.0;   // |amplitude parameter| / its standard deviation
   bool eligible = false;
   std::string why;            // reason when not eligible
+  // Significant, worth its parameters, and refused only for its held-out
+  // gain or a plausibility check against the current model: it may pay
+  // together with a second cause (stage 5e, cause_pair.cpp).
+  bool lead = false;
 };
 
 // Stage 5's choice among a round's outcomes: the eligible candidate with the
@@ -173,6 +191,7 @@ struct Cause {
   std::vector<double> value, stddev;  // ... with uncertainty (stddev NaN if unknown)
   double error_holdout = 0.0; // held-out eq. (27) error with this and the earlier causes
   double gain = 0.0;          // 1 - error_holdout / the previous model's
+  bool paired = false;        // one of the first two causes, accepted as a pair (stage 5e)
 };
 
 // Per-record figures of a model.

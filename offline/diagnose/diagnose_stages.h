@@ -5,6 +5,7 @@
 //   cause_round.cpp     stages 3-5a: screen, joint fits, judge one round
 //   cause_revision.cpp  stages 5c-5d: refit an accepted cause, reject it if its
 //                       gain was not its own, drop a stale one
+//   cause_pair.cpp      stage 5e: two causes that pay only together
 //   verdict_text.cpp    stage 6: the one-sentence verdict, per-record figures
 #ifndef RTB_OFFLINE_DIAGNOSE_STAGES_H
 #define RTB_OFFLINE_DIAGNOSE_STAGES_H
@@ -93,6 +94,27 @@ bool other_cells_explain(Current &cur, const Current &before, const Candidate &c
                          const Context &cx, DiagnoseResult &R);
 // Stage 5d: drop an earlier cause that no longer pays; its index, or -1.
 int drop_redundant(Current &cur, const Context &cx, DiagnoseResult &R);
+// Stage 5d: a relaxation spectrum refitted onto its fastest branch becomes
+// that branch's word (`viscous` or `maxwell`); the index replaced, or -1.
+int spectrum_to_one_branch(Current &cur, const Context &cx, DiagnoseResult &R);
+// The share of a relaxation spectrum's stiffness on its fastest branch.
+double fastest_branch_share(const rtb_params &p);
+// Cause i of `causes`, fitted as `fit`, refitted in its other definition
+// (other_definition, candidates.h) with the rest; true, and causes[i] and
+// fit replaced, when the records prefer it (a lower fit misfit).
+bool prefer_other_definition(std::vector<Candidate> &causes, size_t i, const Context &cx,
+                             ExtFitResult &fit);
+// Stage 5d: each earlier cause's other definition, refitted with the later
+// ones; the records' choice replaces it in cur and R.
+void revisit_definitions(Current &cur, const Context &cx, DiagnoseResult &R);
+// A cause switched off in m: its sizes zeroed, its settings the plain element's.
+void switch_off(const Candidate &c, ExtModel &m);
+
+// Stage 5e: no single word paid in the first round (`first`); try the
+// leads with a second word. True when a pair paid: cur becomes the pair's
+// model, both causes are in R.causes and the trial round in R.candidates.
+bool pair_of_causes(Current &cur, const std::vector<CandidateOutcome> &first, const Context &cx,
+                    DiagnoseResult &R);
 
 // The report entry of an accepted cause (sizes, gain over `before`).
 Cause make_cause(const CandidateOutcome &co, const Current &before);

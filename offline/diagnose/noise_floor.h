@@ -8,6 +8,17 @@
 // frequency f is scaled by (2 sin(pi f dt))^4, 1e-3 at f = fs/30 -- and keep
 // (b) with variance 70 sigma^2, so sigma = 1.4826 MAD(d4 e) / sqrt(70);
 // the median ignores the few large differences at input corners or steps.
+// Acquisition chains often band-limit the noise (an anti-alias filter):
+// correlated noise has less high-frequency content, and the white estimate
+// is then 0.4-0.7 of its level (refgen colored_noise, a first-order
+// low-pass at 5-15% of the sample rate: plain RT came out `unexplained` at
+// 2x the floor). So sigma is fitted to the fourth differences at lags 1 to
+// 4 with the noise correlation a^|k| of a first-order low-pass: their
+// variances are sigma^2 q(a^L), q(a) = 70 - 112 a + 56 a^2 - 16 a^3 + 2 a^4.
+// White noise gives a within 0.1 of 0; the white estimate is kept below
+// a = 0.2, and a is capped at 0.8 (beyond, q(a^L) hardly changes with L and
+// a would be guessed, in the direction that raises the floor). The
+// correlation is the chain's: the median over the records of a diagnosis.
 // The floor is the eq. (27) error that noise alone would give on a set of
 // records: sqrt(sum_r w_r sigma_r^2 T_r / (2 J0)).
 #ifndef RTB_OFFLINE_NOISE_FLOOR_H
@@ -21,19 +32,24 @@ namespace rtb {
 
 // Robust white-noise standard deviation of uniformly sampled values.
 double white_noise_sigma(const std::vector<double> &s);
+// Below this lag-1 correlation the noise is taken as white.
+constexpr double kWhiteBelow = 0.2;
+// The lag-1 correlation a of the noise in uniformly sampled values, fitted
+// (0 to 0.8; see above).
+double noise_correlation(const std::vector<double> &s);
+// Robust standard deviation of the noise in uniformly sampled values whose
+// noise has correlation a^|k| (white below kWhiteBelow).
+double noise_sigma(const std::vector<double> &s, double a);
 
 struct NoiseFloor {
   std::vector<double> sigma_fit, sigma_holdout;  // per record [force]
   double error_fit = 0.0, error_holdout = 0.0;   // eq. (27) floor of each set
+  double correlation = 0.0;  // the noise's lag-1 correlation, median of the records (0: white)
 };
 
 // The floor of model m's residual on each set (holdout may be empty).
 NoiseFloor estimate_noise_floor(const ExtModel &m, const std::vector<Record> &fit,
                                 const std::vector<Record> &holdout, const MisfitOptions &opt);
-
-// sigma of each record's residual under model m and the set's eq. (27) floor.
-double floor_error(const ExtModel &m, const std::vector<Record> &recs, const MisfitOptions &opt,
-                   std::vector<double> *sigma);
 
 }  // namespace rtb
 

@@ -48,6 +48,7 @@ std::string verdict_text(const DiagnoseResult &R) {
     v += "none (the residual is at the noise floor of " + pct(R.floor.error_holdout) + ")";
   } else {
     for (size_t i = 0; i < R.causes.size(); ++i) v += (i ? " + " : "") + R.causes[i].description;
+    if (R.causes.front().paired) v += " (the first two as a pair: neither pays alone)";
   }
   if (R.extended.p.cells != R.baseline.p.cells) {  // other_cells_explain
     char b[160];

@@ -18,7 +18,7 @@
 # definitions of four words (quadratic asymmetry, tanh softening, an
 # erf-shaped Mullins loss, a fifth-order stiffening) on seeds 1-2;
 # conventions = rig conventions that are not effects (records about a held
-# preload; a compression-positive load cell), alone and under words, on
+# preload; a compression-positive load cell; band-limited noise), alone and under words, on
 # seeds 1-2; all = singles + hard + definitions + conventions.
 # Meant to run in the background: nohup tests/refgen/acceptance.sh > acc.log 2>&1 &
 # Output: DIR/table.txt, DIR/results.jsonl, DIR/CASE/{truth,report}.json and
@@ -58,7 +58,8 @@ hard="delay,asymmetry maxwell,offset backlash,cubic_stiffness viscous,cubic_stif
       slack relaxation_spectrum friction_asymmetry hum drift clipping spikes zero_drift"
 definitions="asymmetry_quadratic softening_tanh mullins_erf stiffening_quintic"
 conventions="preload preload,backlash_held preload,maxwell preload,cubic_stiffness preload,inertia
-             compression_positive compression_positive,backlash compression_positive,delay"
+             compression_positive compression_positive,backlash compression_positive,delay
+             colored_noise colored_noise,maxwell colored_noise,backlash colored_noise,inertia"
 on_seeds() {  # on_seeds "WORDS" "SEEDS"
   local w s
   for s in $2; do for w in $1; do printf '%s:%s ' "$w" "$s"; done; done

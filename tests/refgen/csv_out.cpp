@@ -90,7 +90,7 @@ void write_truth_json(const std::string &path, const Scenario &sc,
     << ", \"dt\": " << c.dt << ", \"substeps\": " << c.substeps << ", \"force_noise\": "
     << c.force_noise << ", \"disp_noise\": " << c.disp_noise << ", \"delay\": " << c.delay
     << ", \"force_lowpass_hz\": " << c.force_lowpass_hz << ", \"disp_delay\": " << c.disp_delay
-    << ", \"offset\": " << c.offset << ", \"zero_drift\": " << c.zero_drift << ", \"preload\": " << c.preload << ", \"force_sign\": " << c.force_sign << ", \"hum\": " << c.hum << ", \"clip\": " << c.clip
+    << ", \"offset\": " << c.offset << ", \"zero_drift\": " << c.zero_drift << ", \"preload\": " << c.preload << ", \"force_sign\": " << c.force_sign << ", \"noise_hz\": " << c.noise_hz << ", \"hum\": " << c.hum << ", \"clip\": " << c.clip
     << ", \"spikes\": " << c.spikes << ", \"spike_rate\": " << c.spike_rate
     << ", \"column_style\": " << sc.column_style << "},\n  \"records\": [";
   std::vector<const Samples *> fit, hold;

@@ -20,7 +20,7 @@ const std::vector<std::string> &effect_names() {
       "asymmetry_quadratic", "softening_tanh", "mullins_erf", "stiffening_quintic",
       "delay_displacement",
       // a rig convention, not an effect: the records oscillate about a held preload
-      "preload", "compression_positive"};
+      "preload", "compression_positive", "colored_noise"};
   return names;
 }
 
@@ -31,7 +31,8 @@ std::string expected_word(const std::string &effect) {
   if (effect == "softening_tanh") return "softening";
   if (effect == "mullins_erf") return "mullins";
   if (effect == "stiffening_quintic") return "cubic_stiffness";
-  if (effect == "preload" || effect == "compression_positive") return "none";
+  if (effect == "preload" || effect == "compression_positive" || effect == "colored_noise")
+    return "none";
   if (effect == "hum" || effect == "drift" || effect == "clipping" || effect == "spikes" ||
       effect == "zero_drift")
     return "unexplained";
@@ -120,6 +121,8 @@ void apply_effect(Scenario &sc, const std::string &e, Rng &rng) {
     c.preload = rng.sign() * rng.uniform(0.5, 1.5) * A;
   else if (e == "compression_positive")  // the load cell's sign convention, not an effect
     c.force_sign = -1.0;
+  else if (e == "colored_noise")  // an anti-alias filter at 5-15% of the sample rate
+    c.noise_hz = rng.uniform(0.05, 0.15) / c.dt;
   else if (e == "hum") {
     c.hum = rng.uniform(0.01, 0.02) * Fel;
     c.hum_phase = rng.uniform(0.0, kTwoPi);

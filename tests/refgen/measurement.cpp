@@ -134,9 +134,15 @@ Samples run_record(const Specimen &s, const Command &cmd, const Chain &c) {
   Rng rng(c.seed);
   r.x.resize(n);
   r.F.resize(n);
+  // Band-limited noise: an AR(1) sequence of unit variance, whose spectrum
+  // is a first-order low-pass at noise_hz (white when 0).
+  const double a = c.noise_hz > 0.0 ? std::exp(-kTwoPi * c.noise_hz * c.dt) : 0.0;
+  const double b = std::sqrt(1.0 - a * a);
+  double ex = rng.normal(), eF = rng.normal();
   for (size_t k = 0; k < n; ++k) {
-    r.x[k] = r.x_true[k] + c.disp_noise * xmax * rng.normal();
-    r.F[k] = r.F_clean[k] + c.force_noise * Fmax * rng.normal();
+    if (k > 0) ex = a * ex + b * rng.normal(), eF = a * eF + b * rng.normal();
+    r.x[k] = r.x_true[k] + c.disp_noise * xmax * ex;
+    r.F[k] = r.F_clean[k] + c.force_noise * Fmax * eF;
   }
   if (c.spikes > 0.0)  // isolated glitches of either sign, on the recorded force only
     for (size_t k = 0; k < n; ++k)

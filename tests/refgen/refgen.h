@@ -106,6 +106,9 @@ struct Chain {
   double preload = 0.0;      // static actuator position the records oscillate about [mm];
                              // the specimen has been held there (relaxed) before t = 0
   double force_sign = 1.0;   // -1: a compression-positive load cell (force recorded negated)
+  double noise_hz = 0.0;     // > 0: the noise on both channels is band-limited (an
+                             // acquisition's anti-alias filter): a first-order low-pass
+                             // at this corner, same standard deviation [Hz]; 0: white
   double clip = 0.0;         // load-cell saturation: |F| recorded at most this [N] (0 = off)
   double spikes = 0.0;       // acquisition glitches: size of isolated outlier samples [N]
   double spike_rate = 0.0;   // their probability per sample

@@ -7,7 +7,7 @@ tests/refgen/acceptance.sh.
 
 Verdict rules (issue #10):
   plain (effect none)          correct iff cause is "none" and no cause is listed
-                               (also under a rig convention: preload, compression_positive)
+                               (also under a rig convention: preload, compression_positive, colored_noise)
   single vocabulary word       correct iff cause (the first name) is the word
                                (both clearance forms -> "backlash")
   new word                     the same, counted with the combined cases
@@ -32,7 +32,7 @@ def named_words(report):
     return [w for w in words if w and w not in NOT_NAMES]
 
 
-CONVENTIONS = {"preload", "compression_positive"}  # rig conventions, not effects: expected word "none"
+CONVENTIONS = {"preload", "compression_positive", "colored_noise"}  # rig conventions, not effects: expected word "none"
 
 
 def category(effects):
