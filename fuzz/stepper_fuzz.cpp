@@ -55,6 +55,7 @@ rtb_params make_params(Bytes &in) {
   else if (ext3 & 2) p.backlash_held = 1.0;
   if ((ext3 & 4) && p.model == RTB_MODEL_RT) p.fric_asym = in.unit() * 1.98 - 0.99;
   if (ext3 & 16) p.k2 = (in.unit() * 2.0 - 1.0) * in.log_uniform(1e-6, 1e4);  // ABI 6
+  if (ext3 & 32) p.mullins_whole = 1.0;                                         // ABI 7
   if (ext3 & 8) {
     p.spec_k = in.log_uniform(1e-3, 1e5);
     p.spec_exp = in.unit() * 2.0 - 1.0;

@@ -65,17 +65,18 @@ extern "C" {
 /* Types                                                               */
 /* ------------------------------------------------------------------ */
 
-#define RTB_ABI_VERSION 6     /* bumped on any layout change of the structs
+#define RTB_ABI_VERSION 7     /* bumped on any layout change of the structs
                                  (2: `smoothing`, `sat_force`, `sat_disp` took reserved[0..2];
                                   3: slack, backlash_held, fric_asym, spec_* and the
                                   spectrum memory z_spec in rtb_state; fixed-width
                                   integer fields, struct sizes in rtb_info;
                                   4: rtb_step_info.work, the spent work budget;
                                   5: rtb_settings.max_work, the budget at run time;
-                                  6: k2, the quadratic spring, took reserved[0]) */
+                                  6: k2, the quadratic spring, took reserved[0];
+                                  7: mullins_whole, the Mullins definition, took reserved[0]) */
 #define RTB_MAX_CELLS 32      /* capacity of rtb_state; N = 1 .. RTB_MAX_CELLS */
 #define RTB_DEFAULT_CELLS 15  /* the paper's choice (section 3.4) */
-#define RTB_N_RESERVED 5
+#define RTB_N_RESERVED 4
 #define RTB_MAX_BRANCHES 16  /* capacity of the relaxation spectrum (eight decades) */
 
 /* The scalar: double, or float when compiled with -DRTB_SINGLE (for a
@@ -159,8 +160,9 @@ typedef struct rtb_params {
   rtb_real viscous_c;   /* parallel linear dashpot: F += c v, >= 0 [force time/length] */
   rtb_real mass;        /* inertia in the load path: F += m a     [force time^2/length] */
   rtb_real backlash;    /* total clearance g in series, >= 0     [length] */
-  rtb_real mullins;     /* Mullins softening fraction mu in [0, 1) of K0 below
-                           the prior maximum |xb| */
+  rtb_real mullins;     /* Mullins softening fraction mu in [0, 1) below the
+                           prior maximum |xb|: of K0, or of the whole RT force
+                           when mullins_whole = 1 */
 
   /* Model setting, not a physical parameter (ABI 2, from reserved[0]). */
   rtb_real smoothing;   /* s of the paper's sigmoid smoothing, eq. (14), >= 0
@@ -199,6 +201,14 @@ typedef struct rtb_params {
                            definition of a tension/compression asymmetry
                            (tangent K0 + 2 k2 xb; with k3 the polynomial
                            static law K0 x + k2 x^2 + k3 x^3) [force/length^2] */
+  /* ABI 7 (issue #10), from reserved[0]. */
+  rtb_real mullins_whole; /* 0: the Mullins softening eta = 1 - mu (1 - |xb|/max)
+                           acts on K0 xb only (the equilibrium spring); 1: on
+                           the whole RT force eta (K0 xb + Kpa (xb - y1)), i.e.
+                           on every stiffness and dashpot of the rubber alike
+                           (Ogden-Roxburgh's damage scales the material's
+                           stress). Eq. (2) is homogeneous in (Kpa, Kr, C0),
+                           so the cells move as without it. Exactly 0 or 1. */
   rtb_real reserved[RTB_N_RESERVED];
 } rtb_params;
 
@@ -264,7 +274,8 @@ typedef struct rtb_params {
   X(spec_exp, ANY, FIT, "-", "relaxation spectrum weight exponent")                  \
   X(spec_tau_min, NONNEG, SETTING, "time", "relaxation spectrum fastest time")       \
   X(spec_tau_max, NONNEG, SETTING, "time", "relaxation spectrum slowest time")   \
-  X(k2, ANY, FIT, "force/length^2", "quadratic spring (asymmetry)")
+  X(k2, ANY, FIT, "force/length^2", "quadratic spring (asymmetry)")                 \
+  X(mullins_whole, FLAG, SETTING, "-", "Mullins softening of the whole RT force (1) or of K0 (0)")
 
 /* Numerical settings of the implicit solve. NULL means rtb_settings_default. */
 typedef struct rtb_settings {

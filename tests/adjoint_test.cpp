@@ -122,6 +122,22 @@ TEST_P(AdjointIntegrators, SlackSpecimen) {
   expect_exact(p, recs);
 }
 
+// The Mullins softening of the whole RT force (ABI 7): the force's y1
+// partial is -eta Kpa, and a slack end's floating root goes through it.
+TEST_P(AdjointIntegrators, WholeForceMullinsAlsoWhenSlack) {
+  rtb_params truth;
+  rtb_params_default(&truth, RTB_MODEL_RT);
+  truth.integrator = GetParam();
+  std::vector<Record> recs = rtb_test::paper_records(truth, 1.0);
+  rtb_params p = table1_point(truth);
+  p.mullins = 0.3;
+  p.mullins_whole = 1;
+  p.k3 = 50;
+  expect_exact(p, recs);
+  p.slack = 1;
+  expect_exact(p, recs);
+}
+
 INSTANTIATE_TEST_SUITE_P(Both, AdjointIntegrators,
                          ::testing::Values((int)RTB_INTEGRATOR_SDIRK2, (int)RTB_INTEGRATOR_BE));
 

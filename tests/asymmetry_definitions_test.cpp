@@ -82,11 +82,7 @@ TEST(AsymmetryDefinitions, TheOtherDefinitionMatchesAtTwoThirdsOfTheStroke) {
       EXPECT_FALSE(other_definition(c, start, sc, &alt, &alt_start)) << c.name;
 }
 
-// Joint fits from the same screen start as the diagnosis: the core and the
-// word's parameter free.
-ExtFitResult fit_word(const Candidate &c, const ExtModel &start, const std::vector<Record> &recs) {
-  return fit_extended(recs, start, combined_spec({c}, data_scales(recs)), MisfitOptions());
-}
+using rtb_test::fit_word;
 
 TEST(AsymmetryDefinitions, TheRecordsChooseTheirDefinition) {
   const Candidate &kink = asymmetry_word();

@@ -27,8 +27,8 @@ TEST(SelectCause, LowestHeldOutErrorWhenNothingSimplerIsClose) {
   const std::vector<CandidateOutcome> r = {outcome("maxwell", 2, 0.0332),
                                            outcome("viscous", 1, 0.0330),
                                            outcome("relaxation_spectrum", 2, 0.0200)};
-  ASSERT_NE(select_cause(r, 0.10), nullptr);
-  EXPECT_EQ(select_cause(r, 0.10)->cand.name, "relaxation_spectrum");
+  ASSERT_NE(select_cause(r, 0.10, 0.0), nullptr);
+  EXPECT_EQ(select_cause(r, 0.10, 0.0)->cand.name, "relaxation_spectrum");
 }
 
 TEST(SelectCause, SimplerCandidateWithinParsimonyWins) {
@@ -36,8 +36,8 @@ TEST(SelectCause, SimplerCandidateWithinParsimonyWins) {
   const std::vector<CandidateOutcome> r = {outcome("maxwell", 2, 0.0332),
                                            outcome("viscous", 1, 0.0298),
                                            outcome("relaxation_spectrum", 2, 0.0282)};
-  EXPECT_EQ(select_cause(r, 0.10)->cand.name, "viscous");
-  EXPECT_EQ(select_cause(r, 0.0)->cand.name, "relaxation_spectrum");  // rule off
+  EXPECT_EQ(select_cause(r, 0.10, 0.0)->cand.name, "viscous");
+  EXPECT_EQ(select_cause(r, 0.0, 0.0)->cand.name, "relaxation_spectrum");  // rule off
 }
 
 TEST(SelectCause, IneligibleNeverChosenAndArtefactsCountTheirParameter) {
@@ -45,9 +45,33 @@ TEST(SelectCause, IneligibleNeverChosenAndArtefactsCountTheirParameter) {
                                      outcome("cubic_stiffness", 1, 0.0205),
                                      outcome("delay", 0, 0.0200, true, true)};
   // delay adds one parameter, like the cubic spring: the lower error wins.
-  EXPECT_EQ(select_cause(r, 0.10)->cand.name, "delay");
+  EXPECT_EQ(select_cause(r, 0.10, 0.0)->cand.name, "delay");
   for (CandidateOutcome &o : r) o.eligible = false;
-  EXPECT_EQ(select_cause(r, 0.10), nullptr);
+  EXPECT_EQ(select_cause(r, 0.10, 0.0), nullptr);
+}
+
+// A degressive cubic spring is the small-x form of the softening spring:
+// parsimony does not give the word to the cubic when the softening spring
+// takes most of its excess over the floor (the measured figures).
+TEST(SelectCause, ASaturatingSpringIsNotADegressiveCubic) {
+  auto cubic = [](double k3, double err) {
+    CandidateOutcome o = outcome("cubic_stiffness", 1, err);
+    o.fit.model.p.k3 = k3;
+    return o;
+  };
+  // blindgen softening_s2 (a tanh law): floor 3.491%.
+  std::vector<CandidateOutcome> r = {cubic(-69.2, 0.03882), outcome("softening", 2, 0.03593)};
+  EXPECT_EQ(select_cause(r, 0.10, 0.03491)->cand.name, "softening");
+  EXPECT_EQ(select_cause(r, 0.10, 0.0)->cand.name, "cubic_stiffness");  // no floor: parsimony
+  // refgen cubic_stiffness_s5 (a degressive cubic): the two tie, floor 1.345%.
+  r = {cubic(-111, 0.01705), outcome("softening", 2, 0.01714)};
+  EXPECT_EQ(select_cause(r, 0.10, 0.01345)->cand.name, "cubic_stiffness");
+  // refgen cubic_stiffness_s3: the cubic's excess is under a tenth of the floor.
+  r = {cubic(-72.9, 0.01362), outcome("softening", 2, 0.01300)};
+  EXPECT_EQ(select_cause(r, 0.10, 0.01255)->cand.name, "cubic_stiffness");
+  // A progressive cubic is not a softening, however the errors fall.
+  r = {cubic(+80.0, 0.03882), outcome("softening", 2, 0.03593)};
+  EXPECT_EQ(select_cause(r, 0.10, 0.03491)->cand.name, "cubic_stiffness");
 }
 
 // The gain test near the noise floor, with the measured refgen figures

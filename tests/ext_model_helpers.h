@@ -1,7 +1,7 @@
 // ext_model_helpers.h -- shared by the diagnosis' unit tests: the paper's RT
 // parameters as an extended model, its predicted force through the force
 // channel (predict_extended), records "measured" through a known truth, and
-// a vocabulary word by name.
+// a vocabulary word by name, and a word's joint fit.
 #ifndef RTB_TESTS_EXT_MODEL_HELPERS_H
 #define RTB_TESTS_EXT_MODEL_HELPERS_H
 
@@ -50,6 +50,14 @@ inline const rtb::Candidate &vocabulary_word(const std::string &name) {
     if (c.name == name) return c;
   ADD_FAILURE() << "no candidate " << name;
   return rtb::candidate_vocabulary().front();
+}
+
+// A word's joint fit from `start`, as the diagnosis runs it (stage 4): the
+// core and the word's parameters free.
+inline rtb::ExtFitResult fit_word(const rtb::Candidate &c, const rtb::ExtModel &start,
+                                  const std::vector<rtb::Record> &recs) {
+  return rtb::fit_extended(recs, start, rtb::combined_spec({c}, rtb::data_scales(recs)),
+                           rtb::MisfitOptions());
 }
 
 }  // namespace rtb_test

@@ -95,6 +95,19 @@ TEST(TangentExtensions, Mullins) {
   }
 }
 
+TEST(TangentExtensions, WholeForceMullins) {
+  for (int model : {RTB_MODEL_RT, RTB_MODEL_STS}) {
+    rtb_params p;
+    rtb_params_default(&p, model);
+    p.mullins = 0.4;
+    p.mullins_whole = 1.0;
+    SCOPED_TRACE(model);
+    const Tally t = check_tangent(p, 1.0, 3.0);
+    EXPECT_GE(t.checked, model == RTB_MODEL_RT ? 75 : 40);
+    EXPECT_LE(t.kinks, model == RTB_MODEL_RT ? 6 : 45);
+  }
+}
+
 TEST(TangentExtensions, SofteningSpring) {
   for (int integ : {RTB_INTEGRATOR_SDIRK2, RTB_INTEGRATOR_BE}) {
     rtb_params p = paper();

@@ -213,12 +213,13 @@ void chain_vjp(const StepView &v, const Branches &br, const StateDual &bn, State
   *xbbar = dxb_bar;
 }
 
-// dF/d(memory): y1 -> -Kpa, z -> -maxwell_k, z_j -> -spec_k w_j.
+// dF/d(memory): y1 -> L.f.d_y1 (-Kpa, or -eta Kpa with mullins_whole),
+// z -> -maxwell_k, z_j -> -spec_k w_j.
 double force_jvp(const StepView &v, const Branches &br, const StateDual &d, const StateDual &dn,
                  const double *dp, bool with_inertia) {
   const rtb_params &p = *v.p;
   const ForceLin L = force_lin(v, br.sp, with_inertia);
-  double dF = -p.Kpa * dn.y[0] - p.maxwell_k * dn.z + L.f.d_xb * dn.xb + L.f.d_xb_old * d.xb +
+  double dF = L.f.d_y1 * dn.y[0] - p.maxwell_k * dn.z + L.f.d_xb * dn.xb + L.f.d_xb_old * d.xb +
               L.f.d_xbmax * d.m;
   for (int j = 0; j < br.sp.M; ++j) dF -= p.spec_k * br.sp.w[j] * dn.zs[j];
   for (int i = 0; i < P_COUNT; ++i) dF += L.g[i] * dp[i];
@@ -229,7 +230,7 @@ void force_vjp(const StepView &v, const Branches &br, double Fbar, StateDual &bo
                double *pbar, bool with_inertia) {
   const rtb_params &p = *v.p;
   const ForceLin L = force_lin(v, br.sp, with_inertia);
-  bn.y[0] -= p.Kpa * Fbar;
+  bn.y[0] += L.f.d_y1 * Fbar;
   bn.z -= p.maxwell_k * Fbar;
   for (int j = 0; j < br.sp.M; ++j) bn.zs[j] -= p.spec_k * br.sp.w[j] * Fbar;
   bn.xb += L.f.d_xb * Fbar;

@@ -186,6 +186,17 @@ bool other_definition(const Candidate &c, const ExtModel &start, const DataScale
     alt_start->delay_lowpass = !start.delay_lowpass;
     return true;
   }
+  if (c.name == "mullins") {
+    // K0-only and whole-force softening look alike at zero size; the whole
+    // form starts with the same loss of force at the stroke: mu S = mu_K0 K0 x.
+    const bool to_whole = c.variant.empty();
+    alt->variant = to_whole ? "whole" : "";
+    rtb_params &p = alt_start->p;
+    const double share = p.K0 / (p.K0 + 1.0 / (1.0 / p.Kpa + p.cells / p.Kr));
+    p.mullins = std::max(0.05, std::min(0.9, to_whole ? p.mullins * share : p.mullins / share));
+    p.mullins_whole = to_whole ? 1.0 : 0.0;
+    return true;
+  }
   if (c.name != "asymmetry") return false;
   const bool to_quadratic = c.variant.empty();
   alt->extra = {to_quadratic ? P_k2 : P_k_asym};
@@ -231,8 +242,10 @@ std::string describe_effect(const Candidate &c, const ExtModel &m) {
   else if (c.name == "backlash")
     std::snprintf(b, sizeof b, "backlash of %.4g (%s end)", p.backlash,
                   p.backlash_held != 0.0 ? "held" : "floating");
+  else if (c.name == "mullins" && p.mullins_whole != 0.0)
+    std::snprintf(b, sizeof b, "Mullins softening mu = %.4g of the whole RT force", p.mullins);
   else if (c.name == "mullins")
-    std::snprintf(b, sizeof b, "Mullins softening mu = %.4g", p.mullins);
+    std::snprintf(b, sizeof b, "Mullins softening mu = %.4g of K0", p.mullins);
   else if (c.name == "delay" && m.delay_lowpass)
     std::snprintf(b, sizeof b, "force channel low-passed, first order, time constant %.4g s "
                   "(corner %.4g Hz)", m.delay, m.delay > 0 ? 1.0 / (6.283185307179586 * m.delay) : 0.0);

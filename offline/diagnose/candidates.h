@@ -85,6 +85,10 @@ ExtFitSpec combined_spec(const std::vector<Candidate> &cs, const DataScales &s);
 //   at 0), or k2 xb^2 (a quadratic term: the tangent changes linearly with
 //   xb); the alternative is started where it matches the first's force
 //   k_asym |x| at the stroke's two thirds.
+// * mullins: the softening of K0 alone, or of the whole RT force (every
+//   stiffness and dashpot alike, rtb_params.mullins_whole: a damage that
+//   scales the material's stress); the alternative starts with the same
+//   loss of static force.
 // Returns false when c has no other definition; else *alt (variant set) and
 // *alt_start (from `start`, the screen's start for c).
 bool other_definition(const Candidate &c, const ExtModel &start, const DataScales &s,

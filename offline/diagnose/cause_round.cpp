@@ -37,6 +37,14 @@ double fastest_branch_share(const rtb_params &p) {
 
 namespace {
 
+// A size pinned at the edge of its admissible range (a dashpot level
+// asymmetry of 95%, a Mullins loss of 95%) is the fit compensating for
+// something else with the nearest freedom it has, not a measurement of it.
+bool at_size_bound(const Candidate &c, const rtb_params &p) {
+  return (c.name == "friction_asymmetry" && std::fabs(p.fric_asym) >= 0.94) ||
+         (c.name == "mullins" && p.mullins >= 0.94);
+}
+
 // Size of the effect (its first parameter, or the delay / offset) over its
 // standard deviation: the Wald z. NaN when the fit has no finite standard
 // deviation for it (a size at a clamp, a singular covariance).
@@ -89,7 +97,10 @@ void joint_fits(std::vector<CandidateOutcome> &out, const Current &cur, const Co
       // |x| and x^2 terms correlate): the joint fit keeps the one the records
       // prefer. The wrong one leaves a residual that a second word then took
       // (refgen delay_lowpass: a moving mass; asymmetry_quadratic: a
-      // friction asymmetry, 3 of 4 seeds).
+      // friction asymmetry, 3 of 4 seeds). A definition pinned at its size
+      // bound is a compensation, so the other one stands if it is not
+      // (blindgen mullins_s2: a loss of 28% of the static stiffness took
+      // K0's Mullins to 0.95 with K0 doubled).
       Candidate alt;
       ExtModel alt_start;
       if (other_definition(co.cand, co.screen.start, cx.sc, &alt, &alt_start)) {
@@ -97,7 +108,9 @@ void joint_fits(std::vector<CandidateOutcome> &out, const Current &cur, const Co
         with_alt.push_back(alt);
         const ExtFitResult fit_alt =
             fit_extended(cx.fit, alt_start, combined_spec(with_alt, cx.sc), cx.opt.misfit);
-        if (fit_alt.J < co.fit.J) co.fit = fit_alt, co.cand = alt;
+        if (fit_alt.J < co.fit.J || (at_size_bound(co.cand, co.fit.model.p) &&
+                                     !at_size_bound(alt, fit_alt.model.p)))
+          co.fit = fit_alt, co.cand = alt;
       }
       co.joint = std::isfinite(co.fit.J);
       if (!co.joint) co.why = "joint fit failed: non-finite misfit";
@@ -145,12 +158,7 @@ void judge(CandidateOutcome &co, const Current &cur, const Context &cx, double m
   // viscous+cubic_stiffness_s14: exponent 37.5, all of it on 1.5 ms at
   // 1 kHz, named before `viscous` by 10.3% held out).
   const double fastest = co.cand.name == "relaxation_spectrum" ? fastest_branch_share(co.fit.model.p) : 0.0;
-  // A size pinned at the edge of its admissible range (a dashpot level
-  // asymmetry of 95%, a Mullins loss of 95%) is the fit compensating for
-  // something else with the nearest freedom it has, not a measurement of it.
-  const bool at_bound = (co.cand.name == "friction_asymmetry" &&
-                         std::fabs(co.fit.model.p.fric_asym) >= 0.94) ||
-                        (co.cand.name == "mullins" && co.fit.model.p.mullins >= 0.94);
+  const bool at_bound = at_size_bound(co.cand, co.fit.model.p);
   if (co.amplitude_z < opt.min_z) co.why = "effect not significant (z < min_z)";
   else if (at_bound) co.why = "size at the bound of its admissible range: a compensation, not a measurement";
   else if (unresolved_tau) co.why = "relaxation time below 2 sample intervals: a viscous dashpot";
@@ -315,8 +323,22 @@ static size_t parameter_count(const Candidate &c) {
 // Stage 5's choice among the eligible: the lowest trimmed held-out error,
 // or, within `parsimony` of it, the candidate with the fewest parameters
 // (then the lower error). nullptr when none is eligible.
+// `big` nests `small` and takes most of its excess over the floor.
+static bool refines(const CandidateOutcome &big, const CandidateOutcome &small, double floor) {
+  if (!(big.cand.name == "softening" && small.cand.name == "cubic_stiffness" &&
+        small.fit.model.p.k3 < 0.0))
+    return false;
+  const double excess = small.error_holdout_trimmed - floor;
+  return excess > 0.1 * floor && big.error_holdout_trimmed - floor <= 0.5 * excess;
+}
+
 const CandidateOutcome *select_cause(const std::vector<CandidateOutcome> &round,
-                                     double parsimony) {
+                                     double parsimony, double floor) {
+  auto refined = [&](const CandidateOutcome &co) {
+    for (const CandidateOutcome &o : round)
+      if (o.eligible && refines(o, co, floor)) return true;
+    return false;
+  };
   const CandidateOutcome *best = nullptr;
   for (const CandidateOutcome &co : round)
     if (co.eligible && (!best || co.error_holdout_trimmed < best->error_holdout_trimmed)) best = &co;
@@ -324,7 +346,7 @@ const CandidateOutcome *select_cause(const std::vector<CandidateOutcome> &round,
   const double within = (1.0 + parsimony) * best->error_holdout_trimmed;
   const CandidateOutcome *pick = best;
   for (const CandidateOutcome &co : round) {
-    if (!co.eligible || co.error_holdout_trimmed > within) continue;
+    if (!co.eligible || co.error_holdout_trimmed > within || refined(co)) continue;
     const size_t n = parameter_count(co.cand), m = parameter_count(pick->cand);
     if (n < m || (n == m && co.error_holdout_trimmed < pick->error_holdout_trimmed)) pick = &co;
   }

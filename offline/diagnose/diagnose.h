@@ -166,9 +166,16 @@ struct CandidateOutcome {
 // Stage 5's choice among a round's outcomes: the eligible candidate with the
 // lowest trimmed held-out error or, within `parsimony` (a fraction) of it,
 // the one with the fewest fitted parameters (ties: the lower error);
-// nullptr when none is eligible.
+// nullptr when none is eligible. A degressive cubic spring is the small-x
+// form of the softening spring (F tanh(x/d) = F x/d - F x^3/(3 d^3) + ...):
+// when the softening spring takes at least half of the cubic's excess over
+// the noise floor `floor` (eq. (27), held out) and that excess is above a
+// tenth of the floor, the specimen saturates and parsimony does not hand the
+// word to the cubic (blindgen softening_s2: tanh law, cubic 3.88% and
+// softening 3.59% against a floor of 3.49%; refgen's degressive cubics tie
+// within 0.01 point).
 const CandidateOutcome *select_cause(const std::vector<CandidateOutcome> &round,
-                                     double parsimony);
+                                     double parsimony, double floor);
 
 // True when `name` is a word of the vocabulary (candidates.h).
 bool is_candidate_name(const std::string &name);

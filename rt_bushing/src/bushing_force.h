@@ -4,6 +4,7 @@
  * differentiates, so the two cannot drift apart.
  *
  *   F = K0 eta(xb) xb + Kpa (xb - y1)                      eq. (11), Mullins eta
+ *       (mullins_whole: eta (K0 xb + Kpa (xb - y1)), the whole RT force)
  *     + k2 xb^2 + k3 xb^3 + k_asym |xb|                      elastic extensions
  *     + sat_force tanh(xb/sat_disp)
  *     + maxwell_k (xb - z) + sum_j k_j (xb - z_j)            Maxwell branch, spectrum
@@ -87,8 +88,9 @@ static inline void rtb_spectrum_layout(const rtb_params *p, rtb_spectrum *sp) {
 /* ------------------------------------------------------------------ */
 typedef struct rtb_force_lin {
   rtb_real F;          /* force without inertia */
-  rtb_real d_xb;       /* dF/dxb_new at fixed y1, z, z_j (dF/dy1 = -Kpa, dF/dz = -maxwell_k,
+  rtb_real d_xb;       /* dF/dxb_new at fixed y1, z, z_j (dF/dz = -maxwell_k,
                         dF/dz_j = -spec_k w_j) */
+  rtb_real d_y1;       /* dF/dy1: -Kpa, or -eta Kpa with mullins_whole */
   rtb_real d_xb_old;   /* through the linear dashpot */
   rtb_real d_xbmax;    /* through the Mullins memory (prior max |xb|) */
   /* dF/d(parameter) */
@@ -101,12 +103,17 @@ static inline void rtb_force_eval(const rtb_params *p, rtb_real xb, rtb_real xb_
                                   const rtb_spectrum *sp, rtb_real dt, rtb_force_lin *L) {
   const rtb_real ax = fabs(xb);
   const rtb_real sgn = xb > 0.0 ? 1.0 : (xb < 0.0 ? -1.0 : 0.0);
-  /* Mullins: K0 softened by eta = 1 - mu (1 - |xb|/m) below the prior max m. */
+  /* Mullins: eta = 1 - mu (1 - |xb|/m) below the prior max m, on K0 xb or on
+   * the whole RT force S = K0 xb + Kpa (xb - y1) (mullins_whole). */
   const int below = p->mullins > 0.0 && ax < xbmax_old;
   const rtb_real deta_dmu = below ? -(1.0 - ax / xbmax_old) : 0.0;
   const rtb_real eta = 1.0 + p->mullins * deta_dmu;
   const rtb_real deta_dxb = below ? p->mullins * sgn / xbmax_old : 0.0;
   const rtb_real deta_dm = below ? -p->mullins * ax / (xbmax_old * xbmax_old) : 0.0;
+  const int whole = p->mullins_whole != 0.0;
+  const rtb_real chain = xb - y1;
+  const rtb_real S = whole ? p->K0 * xb + p->Kpa * chain : p->K0 * xb; /* what eta scales */
+  const rtb_real eta_pa = whole ? eta : 1.0;                             /* ... on Kpa */
   /* Softening spring Fs tanh(xb/xs); sech^2 = 1 - tanh^2. */
   const rtb_real xs = p->sat_disp;
   const rtb_real th = xs > 0.0 ? tanh(xb / xs) : 0.0, sech2 = 1.0 - th * th;
@@ -118,21 +125,23 @@ static inline void rtb_force_eval(const rtb_params *p, rtb_real xb, rtb_real xb_
   }
   const rtb_real v = (xb - xb_old) / dt;
 
-  L->F = p->K0 * eta * xb + p->Kpa * (xb - y1) + p->k2 * xb * xb + p->k3 * xb * xb * xb + p->k_asym * ax +
-         p->sat_force * th + p->maxwell_k * (xb - z) + p->spec_k * Fsp + p->viscous_c * v;
-  L->d_xb = p->K0 * (eta + xb * deta_dxb) + p->Kpa + 2.0 * p->k2 * xb + 3.0 * p->k3 * xb * xb + p->k_asym * sgn +
-            (xs > 0.0 ? p->sat_force / xs * sech2 : 0.0) + p->maxwell_k +
+  L->F = p->K0 * eta * xb + eta_pa * p->Kpa * chain + p->k2 * xb * xb + p->k3 * xb * xb * xb +
+         p->k_asym * ax + p->sat_force * th + p->maxwell_k * (xb - z) + p->spec_k * Fsp +
+         p->viscous_c * v;
+  L->d_xb = eta * p->K0 + eta_pa * p->Kpa + S * deta_dxb + 2.0 * p->k2 * xb + 3.0 * p->k3 * xb * xb +
+            p->k_asym * sgn + (xs > 0.0 ? p->sat_force / xs * sech2 : 0.0) + p->maxwell_k +
             (sp->M > 0 ? p->spec_k : 0.0) + p->viscous_c / dt;
+  L->d_y1 = -eta_pa * p->Kpa;
   L->d_xb_old = -p->viscous_c / dt;
-  L->d_xbmax = p->K0 * xb * deta_dm;
+  L->d_xbmax = S * deta_dm;
   L->d_K0 = eta * xb;
-  L->d_Kpa = xb - y1;
+  L->d_Kpa = eta_pa * chain;
   L->d_k2 = xb * xb;
   L->d_k3 = xb * xb * xb;
   L->d_k_asym = ax;
   L->d_maxwell_k = xb - z;
   L->d_viscous_c = v;
-  L->d_mullins = p->K0 * xb * deta_dmu;
+  L->d_mullins = S * deta_dmu;
   L->d_sat_force = th;
   L->d_sat_disp = xs > 0.0 ? -p->sat_force * sech2 * xb / (xs * xs) : 0.0;
   L->d_spec_k = Fsp;

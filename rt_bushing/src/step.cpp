@@ -176,7 +176,7 @@ void respond(const rtb_state *s, const rtb_params *p, const rtb_settings *set,
   rtb_force_eval(p, xb, s->xb, s->xb_max, r->y[0], r->z, r->z_spec, sp, dt, &L);
   r->F = L.F;
   /* L.d_xb holds y1 and the memories fixed; add their own dependence on xb. */
-  r->dF = L.d_xb - p->Kpa * dy1 - p->maxwell_k * dz - dF_branches;
+  r->dF = L.d_xb + L.d_y1 * dy1 - p->maxwell_k * dz - dF_branches;
 }
 
 /* Where the bushing end may be: xb in [lo, hi] (hi = +inf for a slack

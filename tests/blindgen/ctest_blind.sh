@@ -1,0 +1,19 @@
+#!/usr/bin/env bash
+# ctest_blind.sh RTB OUTDIR -- the blind generator's cases whose verdicts its
+# effect definitions changed (a Mullins loss on the whole material, a tanh
+# softening that parsimony gave to a degressive cubic) and plain data, through
+# `rtb diagnose`: every case named right, no wrong word. Exit 77 (ctest: skipped)
+# without numpy and scipy (python3-numpy, python3-scipy; `make deps` installs them).
+set -u
+rtb=$1
+out=$2
+here=$(cd "$(dirname "$0")" && pwd)
+py=/usr/bin/python3
+if ! "$py" -c 'import numpy, scipy' 2>/dev/null; then
+  echo "SKIP: /usr/bin/python3 has no numpy or scipy (Debian python3-numpy, python3-scipy)"
+  exit 77
+fi
+rm -rf "$out"
+bash "$here/run_blind.sh" --build "$(dirname "$rtb")" --out "$out" --timeout 300 \
+  --cases "none:1 mullins:1 softening:2" || exit 1
+"$py" "$here/score_blind.py" --strict "$out"
