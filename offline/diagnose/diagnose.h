@@ -98,6 +98,8 @@ struct DiagnoseOptions {
   // Stage 6: causes whose remaining residual (above the floor) is more than
   // this share a + b t trend, or withdraw_drift_share a t F_model stiffness
   // drift, are withdrawn: a time-invariant word only compensates a drift.
+  // Both are measured where the displacement moves: during a hold a slow
+  // residual is a relaxation shape (VHB 4910's 1800 s holds).
   // Of 180 kept reports with a right word the largest trend share is 0.033
   // and the largest drift share 0.037; refgen zero_drift leaves 0.23-0.76.
   double withdraw_trend_share = 0.1;
