@@ -320,10 +320,8 @@ static size_t parameter_count(const Candidate &c) {
   return c.extra.size() + (c.delay ? 1 : 0) + (c.offset ? 1 : 0);
 }
 
-// Stage 5's choice among the eligible: the lowest trimmed held-out error,
-// or, within `parsimony` of it, the candidate with the fewest parameters
-// (then the lower error). nullptr when none is eligible.
-// `big` nests `small` and takes most of its excess over the floor.
+// `big` nests `small` (a softening spring, a degressive cubic) and takes
+// most of its excess over the floor (diagnose.h, select_cause).
 static bool refines(const CandidateOutcome &big, const CandidateOutcome &small, double floor) {
   if (!(big.cand.name == "softening" && small.cand.name == "cubic_stiffness" &&
         small.fit.model.p.k3 < 0.0))
@@ -332,6 +330,10 @@ static bool refines(const CandidateOutcome &big, const CandidateOutcome &small, 
   return excess > 0.1 * floor && big.error_holdout_trimmed - floor <= 0.5 * excess;
 }
 
+// Stage 5's choice among the eligible: the lowest trimmed held-out error,
+// or, within `parsimony` of it, the candidate with the fewest parameters
+// (then the lower error), unless a nesting word refines it. nullptr when
+// none is eligible.
 const CandidateOutcome *select_cause(const std::vector<CandidateOutcome> &round,
                                      double parsimony, double floor) {
   auto refined = [&](const CandidateOutcome &co) {

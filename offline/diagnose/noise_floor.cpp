@@ -28,6 +28,10 @@ double white_noise_sigma(const std::vector<double> &s) {
   return s.size() < 12 ? 0.0 : d4_spread(s, 1) / std::sqrt(70.0);
 }
 
+double rest_band(const std::vector<double> &x, double scale) {
+  return std::max(1e-3 * scale, 5.0 * white_noise_sigma(x));
+}
+
 namespace {
 
 constexpr int kLags = 4;

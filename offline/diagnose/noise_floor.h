@@ -32,6 +32,11 @@ namespace rtb {
 
 // Robust white-noise standard deviation of uniformly sampled values.
 double white_noise_sigma(const std::vector<double> &s);
+// Band within which a displacement record x is at rest: 5 robust sigma of its
+// noise, at least 1e-3 of `scale` (its reach) for a clean sensor. A 0.1% band
+// alone ended every at-rest prefix at the first noisy sample of refgen's
+// 0.2-0.5% noise.
+double rest_band(const std::vector<double> &x, double scale);
 // Below this lag-1 correlation the noise is taken as white.
 constexpr double kWhiteBelow = 0.2;
 // The lag-1 correlation a of the noise in uniformly sampled values, fitted

@@ -38,11 +38,9 @@ std::string offset_contradiction(const ExtModel &fitted, const std::vector<Recor
   for (size_t k = 0; k < recs.size(); ++k) {
     const Record &r = recs[k];
     const double s = k < sigma.size() ? sigma[k] : 0.0;
-    // At rest: within the displacement sensor's noise (5 sigma; 0.1% of the
-    // reach for a clean sensor). A 0.1% band alone ended every prefix at the
-    // first noisy sample of refgen's 0.2-0.5% noise, so no record was
-    // checked and a drifting zero passed as an offset.
-    const double xtol = std::max(1e-3 * xscale, 5.0 * white_noise_sigma(r.x));
+    // At rest: within the displacement sensor's noise (rest_band), else no
+    // record was checked and a drifting zero passed as an offset.
+    const double xtol = rest_band(r.x, xscale);
     const size_t n = at_rest_prefix(r, xtol, xscale);
     if (n < 10) continue;
     double mean = 0.0;

@@ -19,13 +19,12 @@ struct Series {
   std::vector<char> held;          // the displacement is at rest around the sample
 };
 
-// Samples where the displacement stays within the records' at-rest band
-// (plausibility.cpp's offset check: 5 robust sigma of its noise, at least
-// 1e-3 of its range) over +-kHeldHalfWindow samples: a hold.
+// Samples where the displacement stays within its at-rest band (rest_band,
+// as the offset check) over +-kHeldHalfWindow samples: a hold.
 constexpr size_t kHeldHalfWindow = 5;
 std::vector<char> held_samples(const std::vector<double> &x) {
   const auto [lo, hi] = std::minmax_element(x.begin(), x.end());
-  const double tol = std::max(1e-3 * (*hi - *lo), 5.0 * white_noise_sigma(x));
+  const double tol = rest_band(x, *hi - *lo);
   std::vector<char> held(x.size(), 0);
   for (size_t i = 0; i < x.size(); ++i) {
     const size_t a = i > kHeldHalfWindow ? i - kHeldHalfWindow : 0;
