@@ -65,7 +65,7 @@ extern "C" {
 /* Types                                                               */
 /* ------------------------------------------------------------------ */
 
-#define RTB_ABI_VERSION 7     /* bumped on any layout change of the structs
+#define RTB_ABI_VERSION 8     /* bumped on any layout change of the structs
                                  (2: `smoothing`, `sat_force`, `sat_disp` took reserved[0..2];
                                   3: slack, backlash_held, fric_asym, spec_* and the
                                   spectrum memory z_spec in rtb_state; fixed-width
@@ -73,10 +73,11 @@ extern "C" {
                                   4: rtb_step_info.work, the spent work budget;
                                   5: rtb_settings.max_work, the budget at run time;
                                   6: k2, the quadratic spring, took reserved[0];
-                                  7: mullins_whole, the Mullins definition, took reserved[0]) */
+                                  7: mullins_whole, the Mullins definition, took reserved[0];
+                                  8: mullins_width, the Ogden-Roxburgh shape, took reserved[0]) */
 #define RTB_MAX_CELLS 32      /* capacity of rtb_state; N = 1 .. RTB_MAX_CELLS */
 #define RTB_DEFAULT_CELLS 15  /* the paper's choice (section 3.4) */
-#define RTB_N_RESERVED 4
+#define RTB_N_RESERVED 3
 #define RTB_MAX_BRANCHES 16  /* capacity of the relaxation spectrum (eight decades) */
 
 /* The scalar: double, or float when compiled with -DRTB_SINGLE (for a
@@ -143,7 +144,13 @@ typedef struct rtb_params {
   int32_t integrator;    /* rtb_integrator (RT only; STS is rate-independent) */
 
   /* Core parameters p = (K0, Kpa, Kr, C0, alpha), eq. (2) and (11). */
-  rtb_real K0;       /* global elastic stiffness, >= 0       [force/length] */
+  rtb_real K0;       /* global elastic stiffness [force/length]; the static
+                        tangent at x = 0, K0 + 1/(1/Kpa + N/Kr) + sat_force/
+                        sat_disp (rtb_static_force), must be >= 0. K0 < 0 is
+                        for a softening spring that takes more than K0 at
+                        large strain (the static law may then fall there;
+                        with slack K0 + 1/(1/Kpa + N/Kr) >= 0: a floating end
+                        needs a law that rises again) */
   rtb_real Kpa;      /* low-amplitude stiffness, > 0         [force/length] */
   rtb_real Kr;       /* cell spring stiffness, > 0           [force/length] */
   rtb_real C0;       /* RT dashpot coefficient, > 0  [force (time/length)^alpha] */
@@ -154,7 +161,8 @@ typedef struct rtb_params {
    * which equals the input x unless a backlash is set. */
   rtb_real k3;          /* cubic spring: F += k3 xb^3            [force/length^3] */
   rtb_real k_asym;      /* asymmetry: F += k_asym |xb|; stiffness K0+k_asym in
-                           tension, K0-k_asym in compression; |k_asym| <= K0 */
+                           tension, K0-k_asym in compression; |k_asym| <= K0
+                           (0 when K0 < 0) */
   rtb_real maxwell_k;   /* extra Maxwell branch stiffness, >= 0  [force/length] */
   rtb_real maxwell_tau; /* its relaxation time, > 0 when maxwell_k > 0 [time] */
   rtb_real viscous_c;   /* parallel linear dashpot: F += c v, >= 0 [force time/length] */
@@ -209,6 +217,13 @@ typedef struct rtb_params {
                            (Ogden-Roxburgh's damage scales the material's
                            stress). Eq. (2) is homogeneous in (Kpa, Kr, C0),
                            so the cells move as without it. Exactly 0 or 1. */
+  /* ABI 8 (issue #10), from reserved[0]. */
+  rtb_real mullins_width; /* w > 0: the Mullins loss has Ogden and Roxburgh's
+                           (1999) erf shape, eta = 1 - mu erf((max^2 - xb^2)/w^2)
+                           below the prior max |xb| (their energy form with
+                           the elastic energy ~ xb^2): nearly uniform below
+                           the max when w << max. 0 (default): the linear
+                           eta = 1 - mu (1 - |xb|/max). >= 0      [length] */
   rtb_real reserved[RTB_N_RESERVED];
 } rtb_params;
 
@@ -250,7 +265,7 @@ typedef struct rtb_params {
  *   kind: FIT (identifiable), SETTING (fixed model setting, not fitted).
  */
 #define RTB_PARAM_FIELDS(X)                                                          \
-  X(K0, NONNEG, FIT, "force/length", "global elastic stiffness, eq. (11)")           \
+  X(K0, ANY, FIT, "force/length", "global elastic stiffness, eq. (11)")              \
   X(Kpa, POSITIVE, FIT, "force/length", "low-amplitude stiffness, eq. (11)")         \
   X(Kr, POSITIVE, FIT, "force/length", "cell spring stiffness, eq. (2)")             \
   X(C0, POSITIVE, FIT, "force (time/length)^alpha", "RT dashpot coefficient, eq. (1)") \
@@ -275,7 +290,8 @@ typedef struct rtb_params {
   X(spec_tau_min, NONNEG, SETTING, "time", "relaxation spectrum fastest time")       \
   X(spec_tau_max, NONNEG, SETTING, "time", "relaxation spectrum slowest time")   \
   X(k2, ANY, FIT, "force/length^2", "quadratic spring (asymmetry)")                 \
-  X(mullins_whole, FLAG, SETTING, "-", "Mullins softening of the whole RT force (1) or of K0 (0)")
+  X(mullins_whole, FLAG, SETTING, "-", "Mullins softening of the whole RT force (1) or of K0 (0)") \
+  X(mullins_width, NONNEG, FIT, "length", "Mullins erf width w (Ogden-Roxburgh), 0 = linear loss")
 
 /* Numerical settings of the implicit solve. NULL means rtb_settings_default. */
 typedef struct rtb_settings {

@@ -138,6 +138,21 @@ TEST_P(AdjointIntegrators, WholeForceMullinsAlsoWhenSlack) {
   expect_exact(p, recs);
 }
 
+// Ogden-Roxburgh's erf shape of the Mullins loss (ABI 8): the width w is a
+// fitted parameter, and the prior max enters through erf's argument.
+TEST_P(AdjointIntegrators, ErfShapedMullinsOnK0AndOnTheWholeForce) {
+  rtb_params truth;
+  rtb_params_default(&truth, RTB_MODEL_RT);
+  truth.integrator = GetParam();
+  std::vector<Record> recs = rtb_test::paper_records(truth, 1.0);
+  rtb_params p = table1_point(truth);
+  p.mullins = 0.3;
+  p.mullins_width = 0.4;
+  expect_exact(p, recs);
+  p.mullins_whole = 1;
+  expect_exact(p, recs);
+}
+
 INSTANTIATE_TEST_SUITE_P(Both, AdjointIntegrators,
                          ::testing::Values((int)RTB_INTEGRATOR_SDIRK2, (int)RTB_INTEGRATOR_BE));
 

@@ -551,8 +551,9 @@ TEST(IoParams, MissingKeysNamed) {
 }
 
 TEST(IoParams, NegativeAndOutOfRangeNamed) {
-  expect_params_error(rt_json("\"K0\":-1,\"Kpa\":800,\"Kr\":3000,\"C0\":40,\"alpha\":0.2"),
-                      {"params.K0", "negative"});
+  // K0 may be negative down to -chain (= -160 here, no softening spring).
+  expect_params_error(rt_json("\"K0\":-161,\"Kpa\":800,\"Kr\":3000,\"C0\":40,\"alpha\":0.2"),
+                      {"params.K0", "static stiffness at x = 0 must not be negative"});
   expect_params_error(rt_json("\"K0\":1,\"Kpa\":800,\"Kr\":-3000,\"C0\":40,\"alpha\":0.2"),
                       {"params.Kr", "negative"});
   expect_params_error(rt_json("\"K0\":1,\"Kpa\":800,\"Kr\":3000,\"C0\":-4,\"alpha\":0.2"),

@@ -65,6 +65,43 @@ TEST(MullinsDefinitions, WholeSofteningScalesThePlainForceExactly) {
   }
 }
 
+// Ogden-Roxburgh's shape (mullins_width w > 0): on the whole force the
+// element is erf-eta times the plain one, eta = 1 - mu erf((m^2 - x^2)/w^2);
+// a narrow w makes the loss nearly uniform below the max, the linear shape's
+// is proportional to the distance from it.
+TEST(MullinsDefinitions, ErfShapeScalesThePlainForceExactly) {
+  for (double w : {0.05, 0.3, 2.0}) {
+    SCOPED_TRACE(w);
+    rtb_params plain = paper(RTB_MODEL_RT), erfw = plain;
+    erfw.mullins = 0.4;
+    erfw.mullins_whole = 1.0;
+    erfw.mullins_width = w;
+    ASSERT_EQ(rtb_params_validate(&erfw), RTB_OK);
+    rtb_state sp, se;
+    ASSERT_EQ(rtb_state_init(&sp, &plain, 0.0), RTB_OK);
+    ASSERT_EQ(rtb_state_init(&se, &erfw, 0.0), RTB_OK);
+    double m = 0.0, worst = 0.0, fmax = 0.0, lowest_eta = 1.0;
+    for (int k = 1; k <= 2500; ++k) {
+      const double x = input(k);
+      double Fp, Fe;
+      ASSERT_GE(rtb_step(&sp, &plain, NULL, x, 1e-3, &Fp), 0);
+      ASSERT_GE(rtb_step(&se, &erfw, NULL, x, 1e-3, &Fe), 0);
+      const double e = std::fabs(x) < m ? 1.0 - 0.4 * std::erf((m * m - x * x) / (w * w)) : 1.0;
+      worst = std::max(worst, std::fabs(Fe - e * Fp));
+      fmax = std::max(fmax, std::fabs(Fp));
+      if (std::fabs(x) < 0.5 * m) lowest_eta = std::min(lowest_eta, e);
+      m = std::max(m, std::fabs(x));
+    }
+    EXPECT_LE(worst, 1e-12 * fmax);
+    if (w == 0.05) EXPECT_LT(lowest_eta, 0.6 + 1e-9) << "uniform loss below half the max";
+  }
+  rtb_params p = paper(RTB_MODEL_RT);
+  p.mullins_width = -0.1;
+  const char *field = nullptr;
+  EXPECT_EQ(rtb_params_check(&p, &field), RTB_ERR_PARAM_RANGE);
+  EXPECT_STREQ(field, "mullins_width");
+}
+
 TEST(MullinsDefinitions, FlagIsValidatedAndOffWithoutALoss) {
   rtb_params p = paper(RTB_MODEL_RT);
   p.mullins_whole = 0.5;

@@ -170,6 +170,62 @@ TEST(Slack, NeverPushesAndMatchesPlainElementWhileTaut) {
   for (double f : run(p, xc, dt)) EXPECT_LE(std::fabs(f), tiny);
 }
 
+// A softening spring that takes more than K0 (K0 < 0): the static law
+// (K0 + chain) x + Fs tanh(x / d) softens from K0 + chain + Fs/d to
+// K0 + chain, and a hold relaxes to it; a slack strip with it floats free and
+// never pushes. K0 below -(chain + Fs/d), a negative stiffness at x = 0, is
+// refused, naming K0; a large-strain tangent below 0 is allowed, except for
+// a slack strip.
+TEST(SofteningPastK0, HoldRelaxesToTheStaticLawAndSlackStaysFinite) {
+  rtb_params p = rt_default();
+  const double chain = 1.0 / (1.0 / p.Kpa + p.cells / p.Kr);  // 160 N/mm
+  p.sat_force = 300.0;
+  p.sat_disp = 0.5;
+  p.alpha = 0.8;  // relaxes within the hold
+  for (double K0 : {-0.6 * chain, -1.5 * chain}) {
+    p.K0 = K0;
+    ASSERT_EQ(rtb_params_validate(&p), RTB_OK);
+    const double dt = 1e-3;
+    for (double x0 : {2.0, -2.0}) {
+      SCOPED_TRACE(x0);
+      const double closed = (p.K0 + chain) * x0 + p.sat_force * std::tanh(x0 / p.sat_disp);
+      EXPECT_NEAR(rtb_static_force(&p, x0), closed, 1e-12 * std::fabs(closed));
+      std::vector<double> x;
+      for (int i = 0; i <= 1000; ++i) x.push_back(x0 * i / 1000.0);
+      x.resize(x.size() + 30000, x0);
+      const std::vector<double> F = run(p, x, dt);
+      EXPECT_NEAR(F.back(), closed, 1e-4 * std::fabs(closed));
+    }
+    // Large-strain tangent of the static law: K0 + chain.
+    const double h = 1e-3, X = 5.0;
+    EXPECT_NEAR((rtb_static_force(&p, X + h) - rtb_static_force(&p, X - h)) / (2 * h), p.K0 + chain,
+                1e-6 * chain);
+    rtb_params q = p;
+    q.slack = 1;
+    if (K0 < -chain) {  // a slack end needs K0 + chain >= 0: a law that rises again
+      const char *field = nullptr;
+      EXPECT_EQ(rtb_params_check(&q, &field), RTB_ERR_PARAM_RANGE);
+      EXPECT_STREQ(field, "K0");
+      continue;
+    }
+    ASSERT_EQ(rtb_params_validate(&q), RTB_OK);
+    std::vector<double> x;
+    for (int i = 0; i <= 3000; ++i) x.push_back(1.0 * std::sin(2 * M_PI * 1.0 * i * dt));
+    const double tiny = 1e-9 * 2.0 * (std::fabs(q.K0) + q.Kpa);
+    for (double f : run(q, x, dt)) {
+      ASSERT_TRUE(std::isfinite(f));
+      EXPECT_GE(f, -tiny);
+    }
+  }
+  const char *field = nullptr;
+  p.K0 = -(chain + p.sat_force / p.sat_disp) * (1.0 + 1e-9);
+  EXPECT_EQ(rtb_params_check(&p, &field), RTB_ERR_PARAM_RANGE);
+  EXPECT_STREQ(field, "K0");
+  p.sat_force = 0.0;
+  p.K0 = -0.99 * chain;
+  EXPECT_EQ(rtb_params_check(&p, &field), RTB_OK) << field;
+}
+
 TEST(NewExtensions, ValidationNamesTheField) {
   rtb_params p = rt_default();
   const char *field = nullptr;

@@ -83,4 +83,40 @@ TEST(ParamTransformJacobian, ClampAgainstAFixedK0) {
   EXPECT_EQ(J(1, 1), 0.0);
 }
 
+// Next to a softening spring K0 may go negative, down to -(chain +
+// sat_force/sat_disp) (rtb_params_check); below that the map holds it there
+// and K0 follows Kpa, Kr and the softening spring. Without the softening
+// spring K0's box still starts at 0.
+TEST(ParamTransformJacobian, SignedK0HeldAtItsFloor) {
+  rtb_params p = base_params();
+  p.k_asym = 0.0;
+  p.sat_force = 50.0;
+  p.sat_disp = 0.5;
+  const ParamTransform plain({P_K0, P_Kpa, P_Kr}, p, 1e6);
+  EXPECT_FALSE(plain.signed_K0);
+  EXPECT_EQ(plain.lower()[0], 0.0);
+  const ParamTransform tf({P_K0, P_Kpa, P_Kr, P_sat_force, P_sat_disp, P_k_asym}, p, 1e6);
+  ASSERT_TRUE(tf.signed_K0);
+  const double floor = -(1.0 / (1.0 / p.Kpa + p.cells / p.Kr) + p.sat_force / p.sat_disp);
+  for (double K0 : {0.5 * floor, 3.0 * floor}) {
+    SCOPED_TRACE(K0);
+    Eigen::VectorXd th = tf.to_theta(p);
+    th[0] = K0 / tf.scale[P_K0];
+    th[5] = -0.3 * floor / tf.scale[P_k_asym];  // raw k_asym: clamped to 0 with K0 < 0
+    const rtb_params q = tf.to_params(th, p);
+    const char *bad = "";
+    EXPECT_EQ(rtb_params_check(&q, &bad), RTB_OK) << bad;
+    EXPECT_EQ(q.k_asym, 0.0);
+    if (K0 > floor) EXPECT_EQ(q.K0, K0);
+    else EXPECT_NEAR(q.K0, floor, -1e-6 * floor);
+    const Eigen::MatrixXd J = tf.jacobian(th, p);
+    expect_close(J, fd_jacobian(tf, th, p), "signed K0");
+    if (K0 < floor) {
+      EXPECT_EQ(J(0, 0), 0.0);
+      EXPECT_LT(J(0, 1), 0.0) << "a stiffer Kpa lowers the floor";
+      EXPECT_LT(J(0, 3), 0.0) << "a stronger softening spring lowers the floor";
+    }
+  }
+}
+
 }  // namespace

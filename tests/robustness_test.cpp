@@ -237,7 +237,8 @@ TEST(RobustErrors, ParameterRange) {
       {"Kpa = 0", [](rtb_params &p) { p.Kpa = 0.0; }},
       {"Kr < 0", [](rtb_params &p) { p.Kr = -1.0; }},
       {"Kr = 0", [](rtb_params &p) { p.Kr = 0.0; }},
-      {"K0 < 0", [](rtb_params &p) { p.K0 = -1.0; }},
+      {"K0 < -chain", [](rtb_params &p) { p.K0 = -161.0; }},  /* chain 1/(1/800 + 15/3000) = 160 */
+      {"k_asym != 0, K0 < 0", [](rtb_params &p) { p.K0 = -100.0; p.k_asym = 1.0; }},
       {"C0 = 0", [](rtb_params &p) { p.C0 = 0.0; }},
       {"C0 < 0", [](rtb_params &p) { p.C0 = -40.0; }},
       {"|k_asym| > K0", [](rtb_params &p) { p.k_asym = 1.5 * p.K0; }},
@@ -438,44 +439,68 @@ std::string describe(const rtb_params &p) {
   return buf;
 }
 
+// Steps p through kSteps random inputs (smooth, random walk, jumps, any
+// scale, dt 1e-5 .. 1e-2); a failure is reported with the input history.
+void expect_finite_run(std::mt19937 &g, const rtb_params &p, int set, int *failures) {
+  std::uniform_real_distribution<double> u01(0.0, 1.0);
+  const int kSteps = 400;
+  ASSERT_EQ(rtb_params_validate(&p), RTB_OK) << describe(p);
+  // Amplitude scale of this sequence: log-uniform over 1e-9 .. 1e3.
+  const double amp = log_uniform(g, 1e-9, 1e3);
+  rtb_state s;
+  ASSERT_EQ(rtb_state_init(&s, &p, 0.0), RTB_OK);
+  std::ostringstream history;
+  history.precision(17);
+  double x = 0.0;
+  for (int i = 0; i < kSteps; ++i) {
+    const double dt = log_uniform(g, 1e-5, 1e-2);
+    const double kind = u01(g);
+    if (kind < 0.4) {
+      x = amp * std::sin(kTwoPi * 5.0 * s.time);  // smooth
+    } else if (kind < 0.7) {
+      x += amp * (2.0 * u01(g) - 1.0) * 0.1;       // random walk
+    } else if (kind < 0.9) {
+      x = amp * (2.0 * u01(g) - 1.0);              // jump
+    } else {
+      x = (u01(g) < 0.5 ? -1.0 : 1.0) * log_uniform(g, 1e-9, 1e3);  // any scale
+    }
+    history << "(" << x << "," << dt << ") ";
+    double f = kSentinel;
+    const rtb_status st = rtb_step(&s, &p, nullptr, x, dt, &f);
+    if (st < 0 || !std::isfinite(f)) {
+      ADD_FAILURE() << "set " << set << " step " << i << ": status " << st << " ("
+                    << rtb_status_message(st) << "), force " << f << "\n  params: "
+                    << describe(p) << " sat_force=" << p.sat_force << " sat_disp=" << p.sat_disp
+                    << " slack=" << p.slack << "\n  (x, dt) history: " << history.str();
+      ++*failures;
+      return;
+    }
+  }
+}
+
 TEST(RobustFinite, RandomInputsGiveFiniteForce) {
   std::mt19937 g(20130601u);
-  std::uniform_real_distribution<double> u01(0.0, 1.0);
-  const int kSets = 150, kSteps = 400;
   int failures = 0;
-  for (int set = 0; set < kSets && failures < 5; ++set) {
-    const rtb_params p = random_params(g);
-    ASSERT_EQ(rtb_params_validate(&p), RTB_OK) << describe(p);
-    // Amplitude scale of this sequence: log-uniform over 1e-9 .. 1e3.
-    const double amp = log_uniform(g, 1e-9, 1e3);
-    rtb_state s;
-    ASSERT_EQ(rtb_state_init(&s, &p, 0.0), RTB_OK);
-    std::ostringstream history;
-    history.precision(17);
-    double x = 0.0;
-    for (int i = 0; i < kSteps; ++i) {
-      const double dt = log_uniform(g, 1e-5, 1e-2);
-      const double kind = u01(g);
-      if (kind < 0.4) {
-        x = amp * std::sin(kTwoPi * 5.0 * s.time);  // smooth
-      } else if (kind < 0.7) {
-        x += amp * (2.0 * u01(g) - 1.0) * 0.1;       // random walk
-      } else if (kind < 0.9) {
-        x = amp * (2.0 * u01(g) - 1.0);              // jump
-      } else {
-        x = (u01(g) < 0.5 ? -1.0 : 1.0) * log_uniform(g, 1e-9, 1e3);  // any scale
-      }
-      history << "(" << x << "," << dt << ") ";
-      double f = kSentinel;
-      const rtb_status st = rtb_step(&s, &p, nullptr, x, dt, &f);
-      if (st < 0 || !std::isfinite(f)) {
-        ADD_FAILURE() << "set " << set << " step " << i << ": status " << st << " ("
-                      << rtb_status_message(st) << "), force " << f << "\n  params: "
-                      << describe(p) << "\n  (x, dt) history: " << history.str();
-        ++failures;
-        break;
-      }
-    }
+  for (int set = 0; set < 150 && failures < 5; ++set) expect_finite_run(g, random_params(g), set, &failures);
+}
+
+// K0 < 0 under a softening spring (down to the floor -(chain + Fs/d), or
+// -chain with a slack end): the static law may fall at large |x|; a slack end
+// or a clearance must still give a finite force.
+TEST(RobustFinite, SofteningPastK0GivesFiniteForce) {
+  std::mt19937 g(20261125u);
+  std::uniform_real_distribution<double> u01(0.0, 1.0);
+  int failures = 0;
+  for (int set = 0; set < 80 && failures < 5; ++set) {
+    rtb_params p = random_params(g);
+    p.k_asym = 0.0;
+    p.sat_force = log_uniform(g, 1.0, 1e3);
+    p.sat_disp = log_uniform(g, 1e-3, 1.0);
+    const double chain = 1.0 / (1.0 / p.Kpa + p.cells / p.Kr), share = u01(g), end = u01(g);
+    p.K0 = -share * (chain + p.sat_force / p.sat_disp);
+    if (end < 0.3) p.slack = 1.0, p.backlash_held = 0.0, p.K0 = -share * chain;  // floor of a slack end
+    else if (end < 0.5 && p.backlash == 0.0) p.backlash = log_uniform(g, 1e-6, 1.0);
+    expect_finite_run(g, p, set, &failures);
   }
 }
 

@@ -95,6 +95,21 @@ TEST(TangentExtensions, Mullins) {
   }
 }
 
+// Ogden-Roxburgh's erf shape (ABI 8): smooth below the max, so no more kinks
+// than the linear shape.
+TEST(TangentExtensions, ErfShapedMullins) {
+  for (double whole : {0.0, 1.0}) {
+    rtb_params p = paper();
+    p.mullins = 0.4;
+    p.mullins_width = 0.3;
+    p.mullins_whole = whole;
+    SCOPED_TRACE(whole);
+    const Tally t = check_tangent(p, 1.0, 3.0);
+    EXPECT_GE(t.checked, 75);
+    EXPECT_LE(t.kinks, 6);
+  }
+}
+
 TEST(TangentExtensions, WholeForceMullins) {
   for (int model : {RTB_MODEL_RT, RTB_MODEL_STS}) {
     rtb_params p;

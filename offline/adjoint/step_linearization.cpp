@@ -132,6 +132,7 @@ ForceLin force_lin(const StepView &v, const rtb_spectrum &sp, bool with_inertia)
   L.g[P_maxwell_k] = f.d_maxwell_k;
   L.g[P_viscous_c] = f.d_viscous_c;
   L.g[P_mullins] = f.d_mullins;
+  L.g[P_mullins_width] = f.d_mullins_width;
   L.g[P_sat_force] = f.d_sat_force;
   L.g[P_sat_disp] = f.d_sat_disp;
   L.g[P_spec_k] = f.d_spec_k;

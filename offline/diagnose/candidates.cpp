@@ -69,6 +69,13 @@ void spectrum_fastest_branch(rtb_params &p, const DataScales &s, double g) {
 }
 void backlash_of_stroke(rtb_params &p, const DataScales &s, double g) { p.backlash = g * s.Xmax; }
 void mullins_fraction(rtb_params &p, const DataScales &, double g) { p.mullins = g; }
+// Ogden-Roxburgh's erf shape on the whole RT force, its width a third of the
+// stroke: a loss that is nearly uniform below the prior max (blindgen
+// mullins_s3: erf over 8% of the peak energy, w = 0.28 X).
+void set_mullins_erf(rtb_params &p, const DataScales &s) {
+  p.mullins_whole = 1;
+  p.mullins_width = 0.3 * s.Xmax;
+}
 
 // The spectrum's shape: the exponent (from 3 sample intervals), then the
 // fastest branch at that exponent (7 evaluations, not 16: the screen runs
@@ -132,6 +139,8 @@ const std::vector<Candidate> &candidate_vocabulary() {
       short_fitted(word("backlash", {P_backlash}), backlash_of_stroke, {0.02, 0.1}),
       short_fitted(word("backlash", {P_backlash}, set_held, "held"), backlash_of_stroke, {0.03}),
       short_fitted(word("mullins", {P_mullins}), mullins_fraction, {0.3}),
+      short_fitted(word("mullins", {P_mullins, P_mullins_width}, set_mullins_erf, "erf"),
+                   mullins_fraction, {0.3}),
       artefact("delay", true, false),
       word("inertia", {P_mass}),
       artefact("offset", false, true),
@@ -186,6 +195,7 @@ bool other_definition(const Candidate &c, const ExtModel &start, const DataScale
     alt_start->delay_lowpass = !start.delay_lowpass;
     return true;
   }
+  if (c.name == "mullins" && c.variant == "erf") return false;  // its own word entry
   if (c.name == "mullins") {
     // K0-only and whole-force softening look alike at zero size; the whole
     // form starts with the same loss of force at the stroke: mu S = mu_K0 K0 x.
@@ -215,6 +225,7 @@ double extra_start_value(ParamId id, const DataScales &s) {
     case P_maxwell_k: return 0.1 * s.Ksec;
     case P_maxwell_tau: return 0.1 * s.duration;
     case P_mullins: return 0.1;
+    case P_mullins_width: return 0.3 * s.Xmax;
     case P_backlash: return 0.02 * s.Xmax;
     case P_sat_force: return 0.05 * s.Fmax;
     case P_sat_disp: return 0.1 * s.Xmax;
@@ -242,6 +253,10 @@ std::string describe_effect(const Candidate &c, const ExtModel &m) {
   else if (c.name == "backlash")
     std::snprintf(b, sizeof b, "backlash of %.4g (%s end)", p.backlash,
                   p.backlash_held != 0.0 ? "held" : "floating");
+  else if (c.name == "mullins" && p.mullins_width > 0.0)
+    std::snprintf(b, sizeof b, "Mullins softening mu = %.4g of the %s, Ogden-Roxburgh erf shape "
+                  "of width %.4g", p.mullins, p.mullins_whole != 0.0 ? "whole RT force" : "K0",
+                  p.mullins_width);
   else if (c.name == "mullins" && p.mullins_whole != 0.0)
     std::snprintf(b, sizeof b, "Mullins softening mu = %.4g of the whole RT force", p.mullins);
   else if (c.name == "mullins")

@@ -88,7 +88,8 @@ ExtFitSpec combined_spec(const std::vector<Candidate> &cs, const DataScales &s);
 // * mullins: the softening of K0 alone, or of the whole RT force (every
 //   stiffness and dashpot alike, rtb_params.mullins_whole: a damage that
 //   scales the material's stress); the alternative starts with the same
-//   loss of static force.
+//   loss of static force. Ogden-Roxburgh's erf shape (mullins_width) is its
+//   own vocabulary entry (variant "erf", two sizes) without another one.
 // Returns false when c has no other definition; else *alt (variant set) and
 // *alt_start (from `start`, the screen's start for c).
 bool other_definition(const Candidate &c, const ExtModel &start, const DataScales &s,

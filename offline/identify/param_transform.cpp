@@ -1,6 +1,7 @@
 // param_transform.cpp -- see param_transform.h.
 #include "identify/param_transform.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace rtb {
@@ -28,8 +29,35 @@ Kind kind_of(ParamId id, double cap) {
     default: return cap > 0.0 && is_stiffness(id) ? Kind::CappedLog : Kind::Log;
   }
 }
-// Admissible box of a Ramp parameter (linear, zero-admissible).
-double ramp_lower(ParamId id) { return id == P_fric_asym ? -0.95 : 0.0; }  // |a| < 1
+// Admissible box of a Ramp parameter (linear, zero-admissible). A signed K0
+// (next to a softening spring) may go down to -cap; to_params then holds it
+// above k0_floor, the library's bound.
+double ramp_lower(ParamId id, bool signed_K0, double cap) {
+  if (id == P_K0 && signed_K0) return cap > 0.0 ? -cap : -INFINITY;
+  return id == P_fric_asym ? -0.95 : 0.0;  // |a| < 1
+}
+// rtb_params_check keeps the static tangent at x = 0 non-negative:
+// K0 + chain + sat_force / sat_disp >= 0, chain = 1 / (1/Kpa + N/Kr) (the
+// cells relaxed, rtb_static_force); a slack specimen K0 + chain >= 0. to_params holds K0 at kShare of that
+// floor: strictly inside whatever the rounding.
+constexpr double kShare = 1.0 - 1e-9;
+struct K0Floor {
+  double value, d_Kpa, d_Kr, d_sat_force, d_sat_disp;
+};
+K0Floor k0_floor(const rtb_params &p) {
+  const double c = 1.0 / (1.0 / p.Kpa + p.cells / p.Kr);
+  const double sat = p.sat_disp > 0.0 && p.slack == 0.0 ? p.sat_force / p.sat_disp : 0.0;
+  K0Floor f;
+  f.value = -kShare * (c + sat);
+  f.d_Kpa = -kShare * c * c / (p.Kpa * p.Kpa);
+  f.d_Kr = -kShare * c * c * p.cells / (p.Kr * p.Kr);
+  f.d_sat_force = sat > 0.0 ? -kShare / p.sat_disp : 0.0;
+  f.d_sat_disp = sat > 0.0 ? kShare * sat / p.sat_disp : 0.0;
+  return f;
+}
+bool contains(const std::vector<ParamId> &v, ParamId id) {
+  return std::find(v.begin(), v.end(), id) != v.end();
+}
 double ramp_upper(ParamId id, double cap) {
   if (id == P_mullins || id == P_fric_asym) return 0.95;  // rtb_params_validate: < 1
   if (is_stiffness(id) && cap > 0.0) return cap;
@@ -55,6 +83,7 @@ double stiffness_cap_for(const std::vector<Record> &recs) {
 ParamTransform::ParamTransform(std::vector<ParamId> free_ids, const rtb_params &start,
                                double cap)
     : free(std::move(free_ids)), stiffness_cap(std::isfinite(cap) && cap > 0.0 ? cap : 0.0) {
+  signed_K0 = contains(free, P_K0) && contains(free, P_sat_force);
   for (ParamId id : free) {
     const double v = std::fabs(param_get(start, id));
     scale[id] = v > 0.0 ? v : 1.0;
@@ -86,7 +115,7 @@ Eigen::VectorXd ParamTransform::to_theta(const rtb_params &p) const {
       }
       case Kind::Linear: th[i] = v / scale[id]; break;
       case Kind::Ramp:
-        th[i] = std::fmin(std::fmax(v, ramp_lower(id)), ramp_upper(id, stiffness_cap)) / scale[id];
+        th[i] = std::fmin(std::fmax(v, lower_of(id)), ramp_upper(id, stiffness_cap)) / scale[id];
         break;
     }
   }
@@ -106,12 +135,14 @@ rtb_params ParamTransform::to_params(const Eigen::VectorXd &th, const rtb_params
       case Kind::Alpha: v = kAlphaLo + (kAlphaHi - kAlphaLo) * logistic(th[i]); break;
       case Kind::Linear: v = th[i] * scale[id]; break;
       case Kind::Ramp:  // clamped, so that an unbounded optimizer (BFGS) stays valid
-        v = std::fmin(std::fmax(th[i] * scale[id], ramp_lower(id)), ramp_upper(id, stiffness_cap));
+        v = std::fmin(std::fmax(th[i] * scale[id], lower_of(id)), ramp_upper(id, stiffness_cap));
         break;
     }
   }
-  // Keep |k_asym| <= K0 (rtb_params_validate) by clamping.
-  if (std::fabs(p.k_asym) > p.K0) p.k_asym = std::copysign(p.K0, p.k_asym);
+  // Keep K0 above its floor and |k_asym| <= max(K0, 0) (rtb_params_check) by clamping.
+  if (signed_K0 && p.K0 < k0_floor(p).value) p.K0 = k0_floor(p).value;
+  const double asym_max = std::fmax(p.K0, 0.0);
+  if (std::fabs(p.k_asym) > asym_max) p.k_asym = std::copysign(asym_max, p.k_asym);
   if (p.alpha >= 1.0) p.alpha = std::nextafter(1.0, 0.0);
   return p;
 }
@@ -136,12 +167,16 @@ Eigen::VectorXd ParamTransform::dp_dtheta(const Eigen::VectorXd &th) const {
       case Kind::Ramp: {
         // One-sided at the bounds: the box optimizer needs the inward slope.
         const double v = th[i] * scale[id];
-        d[i] = (v < ramp_lower(id) || v > ramp_upper(id, stiffness_cap)) ? 0.0 : scale[id];
+        d[i] = (v < lower_of(id) || v > ramp_upper(id, stiffness_cap)) ? 0.0 : scale[id];
         break;
       }
     }
   }
   return d;
+}
+
+double ParamTransform::lower_of(ParamId id) const {
+  return ramp_lower(id, signed_K0, stiffness_cap);
 }
 
 Eigen::MatrixXd ParamTransform::jacobian(const Eigen::VectorXd &th, const rtb_params &base) const {
@@ -152,15 +187,29 @@ Eigen::MatrixXd ParamTransform::jacobian(const Eigen::VectorXd &th, const rtb_pa
       if (free[i] == id) return (Eigen::Index)i;
     return (Eigen::Index)-1;
   };
+  const rtb_params p = to_params(th, base);
+  const Eigen::Index i0 = index_of(P_K0);
+  // K0 held at its floor: it follows Kpa, Kr and the softening spring.
+  const double k0_boxed =
+      i0 >= 0 ? std::fmin(std::fmax(th[i0] * scale[P_K0], lower_of(P_K0)), ramp_upper(P_K0, stiffness_cap))
+              : 0.0;
+  if (i0 >= 0 && signed_K0 && k0_boxed < k0_floor(p).value) {
+    const K0Floor f = k0_floor(p);
+    J(i0, i0) = 0.0;
+    const std::pair<ParamId, double> deps[] = {
+        {P_Kpa, f.d_Kpa}, {P_Kr, f.d_Kr}, {P_sat_force, f.d_sat_force}, {P_sat_disp, f.d_sat_disp}};
+    for (const auto &dep : deps) {
+      const Eigen::Index j = index_of(dep.first);
+      if (j >= 0) J(i0, j) = dep.second * d[j];
+    }
+  }
   const Eigen::Index ia = index_of(P_k_asym);
   if (ia < 0) return J;
   // The same test as to_params: raw k_asym against the mapped K0.
   const double raw = th[ia] * scale[P_k_asym];
-  const double K0 = to_params(th, base).K0;
-  if (!(std::fabs(raw) > K0)) return J;
-  J(ia, ia) = 0.0;
-  const Eigen::Index i0 = index_of(P_K0);
-  if (i0 >= 0) J(ia, i0) = std::copysign(1.0, raw) * d[i0];
+  if (!(std::fabs(raw) > std::fmax(p.K0, 0.0))) return J;
+  J.row(ia).setZero();
+  if (i0 >= 0 && p.K0 > 0.0) J.row(ia) = std::copysign(1.0, raw) * J.row(i0);
   return J;
 }
 
@@ -176,7 +225,7 @@ Eigen::VectorXd ParamTransform::lower() const {
   Eigen::VectorXd lo = Eigen::VectorXd::Constant((Eigen::Index)free.size(), -INFINITY);
   for (size_t i = 0; i < free.size(); ++i)
     if (kind_of(free[i], stiffness_cap) == Kind::Ramp)
-      lo[(Eigen::Index)i] = ramp_lower(free[i]) / scale[free[i]];
+      lo[(Eigen::Index)i] = lower_of(free[i]) / scale[free[i]];
   return lo;
 }
 

@@ -9,7 +9,8 @@
 // Parameters for which 0 is an admissible and common optimum -- K0, and the
 // sizes of the extensions (maxwell_k, viscous_c, mass, mullins, sat_force),
 // which a fit on data without that effect drives to 0 -- are optimized
-// linearly, p = scale theta, inside the box [0, upper] that the trust-region
+// linearly, p = scale theta, inside the box [0, upper] (K0 next to a
+// softening spring: [-cap, upper], see signed_K0) that the trust-region
 // optimizer enforces by projection. In log coordinates that optimum is
 // infinitely far away: Gauss-Newton crawled towards it a few percent per
 // iteration (60 iterations for a viscous term on delay data, each costing a
@@ -38,6 +39,10 @@ struct ParamTransform {
   std::array<double, P_COUNT> scale{};  // reference magnitude of signed params
 
   double stiffness_cap = 0.0;           // 0: no ceiling (pure log)
+  // K0 may go negative (down to -chain static, rtb_params_check) when a
+  // softening spring is fitted with it: a tanh that takes more than K0
+  // (blindgen softening_s4: 0.8 of the static stiffness, K0 = -435 N/mm).
+  bool signed_K0 = false;
 
   ParamTransform(std::vector<ParamId> free_ids, const rtb_params &start,
                  double stiffness_cap = 0.0);
@@ -47,9 +52,10 @@ struct ParamTransform {
   // the Jacobian before the |k_asym| <= K0 clamp).
   Eigen::VectorXd dp_dtheta(const Eigen::VectorXd &theta) const;
   // The whole Jacobian dp_free / dtheta of to_params(theta, base): the
-  // diagonal above, except where to_params clamps k_asym to +-K0; there
-  // k_asym follows K0 (d k_asym / d theta_K0 = +-dK0/dtheta_K0) and not its
-  // own coordinate (0), so gradients through the clamp are exact.
+  // diagonal above, except where to_params clamps. A signed K0 held at
+  // -chain follows Kpa and Kr; k_asym clamped to +-max(K0, 0) follows K0's
+  // row (or is constant 0) and not its own coordinate, so gradients through
+  // the clamps are exact.
   Eigen::MatrixXd jacobian(const Eigen::VectorXd &theta, const rtb_params &base) const;
   // Chain rule: dJ/dtheta from dJ/dp (every ParamId) at theta, through the
   // whole Jacobian above (exact at the k_asym clamp).
@@ -58,6 +64,7 @@ struct ParamTransform {
   // The box on theta (-inf/+inf where unbounded), for OptOptions.
   Eigen::VectorXd lower() const;
   Eigen::VectorXd upper() const;
+  double lower_of(ParamId id) const;  // lower end of a Ramp parameter's box
 };
 
 // Optimized linearly in a box with 0 as its lower bound (see above).

@@ -4,6 +4,7 @@
  * differentiates, so the two cannot drift apart.
  *
  *   F = K0 eta(xb) xb + Kpa (xb - y1)                      eq. (11), Mullins eta
+ *       (eta linear in |xb|, or Ogden-Roxburgh's erf with mullins_width)
  *       (mullins_whole: eta (K0 xb + Kpa (xb - y1)), the whole RT force)
  *     + k2 xb^2 + k3 xb^3 + k_asym |xb|                      elastic extensions
  *     + sat_force tanh(xb/sat_disp)
@@ -95,21 +96,47 @@ typedef struct rtb_force_lin {
   rtb_real d_xbmax;    /* through the Mullins memory (prior max |xb|) */
   /* dF/d(parameter) */
   rtb_real d_K0, d_Kpa, d_k2, d_k3, d_k_asym, d_maxwell_k, d_viscous_c, d_mullins;
-  rtb_real d_sat_force, d_sat_disp, d_spec_k, d_spec_exp;
+  rtb_real d_sat_force, d_sat_disp, d_spec_k, d_spec_exp, d_mullins_width;
 } rtb_force_lin;
+
+/* Mullins factor eta below the prior max m and its partials. */
+typedef struct rtb_mullins_lin {
+  rtb_real eta, d_mu, d_xb, d_m, d_w;
+} rtb_mullins_lin;
+
+/* Linear: eta = 1 - mu (1 - |xb|/m). Ogden-Roxburgh (w > 0):
+ * eta = 1 - mu erf(a), a = (m^2 - xb^2)/w^2. eta = 1 at and above the max. */
+static inline rtb_mullins_lin rtb_mullins_eval(const rtb_params *p, rtb_real xb, rtb_real m) {
+  rtb_mullins_lin e = {1.0, 0.0, 0.0, 0.0, 0.0};
+  const rtb_real ax = fabs(xb);
+  if (!(p->mullins > 0.0 && ax < m)) return e;
+  const rtb_real mu = p->mullins, w = p->mullins_width;
+  if (w > 0.0) {
+    const rtb_real w2 = w * w, a = (m * m - xb * xb) / w2;
+    const rtb_real g = erf(a), dg = 1.1283791670955126 * exp(-a * a); /* 2/sqrt(pi) e^-a^2 */
+    e.d_mu = -g;
+    e.d_xb = mu * dg * 2.0 * xb / w2;
+    e.d_m = -mu * dg * 2.0 * m / w2;
+    e.d_w = mu * dg * 2.0 * a / w;
+  } else {
+    const rtb_real sgn = xb > 0.0 ? 1.0 : (xb < 0.0 ? -1.0 : 0.0);
+    e.d_mu = -(1.0 - ax / m);
+    e.d_xb = mu * sgn / m;
+    e.d_m = -mu * ax / (m * m);
+  }
+  e.eta = 1.0 + mu * e.d_mu;
+  return e;
+}
 
 static inline void rtb_force_eval(const rtb_params *p, rtb_real xb, rtb_real xb_old, rtb_real xbmax_old,
                                   rtb_real y1, rtb_real z, const rtb_real *z_spec,
                                   const rtb_spectrum *sp, rtb_real dt, rtb_force_lin *L) {
   const rtb_real ax = fabs(xb);
   const rtb_real sgn = xb > 0.0 ? 1.0 : (xb < 0.0 ? -1.0 : 0.0);
-  /* Mullins: eta = 1 - mu (1 - |xb|/m) below the prior max m, on K0 xb or on
-   * the whole RT force S = K0 xb + Kpa (xb - y1) (mullins_whole). */
-  const int below = p->mullins > 0.0 && ax < xbmax_old;
-  const rtb_real deta_dmu = below ? -(1.0 - ax / xbmax_old) : 0.0;
-  const rtb_real eta = 1.0 + p->mullins * deta_dmu;
-  const rtb_real deta_dxb = below ? p->mullins * sgn / xbmax_old : 0.0;
-  const rtb_real deta_dm = below ? -p->mullins * ax / (xbmax_old * xbmax_old) : 0.0;
+  /* Mullins factor eta below the prior max, on K0 xb or on the whole RT
+   * force S = K0 xb + Kpa (xb - y1) (mullins_whole). */
+  const rtb_mullins_lin mu = rtb_mullins_eval(p, xb, xbmax_old);
+  const rtb_real eta = mu.eta;
   const int whole = p->mullins_whole != 0.0;
   const rtb_real chain = xb - y1;
   const rtb_real S = whole ? p->K0 * xb + p->Kpa * chain : p->K0 * xb; /* what eta scales */
@@ -128,12 +155,12 @@ static inline void rtb_force_eval(const rtb_params *p, rtb_real xb, rtb_real xb_
   L->F = p->K0 * eta * xb + eta_pa * p->Kpa * chain + p->k2 * xb * xb + p->k3 * xb * xb * xb +
          p->k_asym * ax + p->sat_force * th + p->maxwell_k * (xb - z) + p->spec_k * Fsp +
          p->viscous_c * v;
-  L->d_xb = eta * p->K0 + eta_pa * p->Kpa + S * deta_dxb + 2.0 * p->k2 * xb + 3.0 * p->k3 * xb * xb +
+  L->d_xb = eta * p->K0 + eta_pa * p->Kpa + S * mu.d_xb + 2.0 * p->k2 * xb + 3.0 * p->k3 * xb * xb +
             p->k_asym * sgn + (xs > 0.0 ? p->sat_force / xs * sech2 : 0.0) + p->maxwell_k +
             (sp->M > 0 ? p->spec_k : 0.0) + p->viscous_c / dt;
   L->d_y1 = -eta_pa * p->Kpa;
   L->d_xb_old = -p->viscous_c / dt;
-  L->d_xbmax = S * deta_dm;
+  L->d_xbmax = S * mu.d_m;
   L->d_K0 = eta * xb;
   L->d_Kpa = eta_pa * chain;
   L->d_k2 = xb * xb;
@@ -141,7 +168,8 @@ static inline void rtb_force_eval(const rtb_params *p, rtb_real xb, rtb_real xb_
   L->d_k_asym = ax;
   L->d_maxwell_k = xb - z;
   L->d_viscous_c = v;
-  L->d_mullins = S * deta_dmu;
+  L->d_mullins = S * mu.d_mu;
+  L->d_mullins_width = S * mu.d_w;
   L->d_sat_force = th;
   L->d_sat_disp = xs > 0.0 ? -p->sat_force * sech2 * xb / (xs * xs) : 0.0;
   L->d_spec_k = Fsp;

@@ -53,10 +53,23 @@ static rtb_status check_rule(const rtb_params *p, const char *name, rtb_real v, 
   return RTB_ERR_PARAM_RANGE;
 }
 
+/* Static stiffness of the cell chain, all dashpots relaxed: Kpa and N
+ * springs Kr in series. */
+static rtb_real chain_static(const rtb_params *p) { return 1.0 / (1.0 / p->Kpa + p->cells / p->Kr); }
+
 /* Rules that tie two fields together; *field names the one to change. */
 static rtb_status check_pairs(const rtb_params *p, const char **field) {
+  /* The static tangent at x = 0, K0 + chain + sat_force/sat_disp (all
+   * dashpots relaxed, rtb_static_force), must not be negative. K0 < 0 lets a
+   * softening spring take more than K0 (an elastomer that loses most of its
+   * static stiffness at large strain); the law at large |x| may then fall,
+   * except for a slack specimen: its floating end needs a force that grows
+   * again above the input (a root to float to), so K0 + chain >= 0 there. */
+  const rtb_real chain = chain_static(p);
+  const rtb_real sat = p->sat_disp > 0.0 && p->slack == 0.0 ? p->sat_force / p->sat_disp : 0.0;
   struct { int bad; const char *name; } rules[] = {
-      {fabs(p->k_asym) > p->K0, "k_asym"},                       /* |k_asym| <= K0 */
+      {!(p->K0 + chain + sat >= 0.0), "K0"},                     /* K0 >= -(chain + sat) */
+      {fabs(p->k_asym) > (p->K0 > 0.0 ? p->K0 : 0.0), "k_asym"}, /* |k_asym| <= max(K0, 0) */
       {p->maxwell_k > 0.0 && !(p->maxwell_tau > 0.0), "maxwell_tau"},
       {p->sat_force > 0.0 && !(p->sat_disp > 0.0), "sat_disp"},
       {(p->spec_k > 0.0 || p->spec_tau_max > 0.0) && !(p->spec_tau_min > 0.0), "spec_tau_min"},
@@ -157,8 +170,8 @@ extern "C" void rtb_get_info(rtb_info *info) {
 
 extern "C" rtb_real rtb_static_force(const rtb_params *p, rtb_real x) {
   if (!p) return 0.0;
-  /* All dashpots relaxed: Kpa and N springs Kr in series, parallel to K0. */
-  const rtb_real chain = 1.0 / (1.0 / p->Kpa + p->cells / p->Kr);
+  /* All dashpots relaxed: the chain parallel to K0. */
+  const rtb_real chain = chain_static(p);
   const rtb_real sat = p->sat_disp > 0.0 ? p->sat_force * tanh(x / p->sat_disp) : 0.0;
   return p->K0 * x + chain * x + p->k2 * x * x + p->k3 * x * x * x + p->k_asym * fabs(x) + sat;
 }
