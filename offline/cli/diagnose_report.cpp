@@ -39,7 +39,7 @@ void print_diagnosis(const DiagnoseResult &R) {
               100 * R.baseline_error_fit, 100 * R.baseline_error_holdout, 100 * R.floor.error_fit,
               100 * R.floor.error_holdout);
   for (const CandidateOutcome &c : R.candidates) {
-    const std::string name = c.cand.name + (c.cand.variant.empty() ? "" : " (" + c.cand.variant + ")");
+    const std::string name = display_name(c.cand);
     std::printf("%-2d %-22s %10.3f %10.3f %10.4g %8.3g %5.0f%%  %s\n", c.round, name.c_str(),
                 100 * c.fit.error, 100 * c.error_holdout, c.dbic, c.amplitude_z, 100 * c.gain,
                 c.eligible ? "eligible" : c.why.c_str());

@@ -234,6 +234,10 @@ double extra_start_value(ParamId id, const DataScales &s) {
   }
 }
 
+std::string display_name(const Candidate &c) {
+  return c.variant.empty() ? c.name : c.name + " (" + c.variant + ")";
+}
+
 std::string describe_effect(const Candidate &c, const ExtModel &m) {
   char b[200];
   const rtb_params &p = m.p;

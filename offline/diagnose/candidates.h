@@ -95,6 +95,9 @@ ExtFitSpec combined_spec(const std::vector<Candidate> &cs, const DataScales &s);
 bool other_definition(const Candidate &c, const ExtModel &start, const DataScales &s,
                       Candidate *alt, ExtModel *alt_start);
 
+// The word with its definition, as tables show it: "mullins (erf)".
+std::string display_name(const Candidate &c);
+
 // One line describing the fitted effect, e.g. "backlash of 0.0312".
 std::string describe_effect(const Candidate &c, const ExtModel &m);
 

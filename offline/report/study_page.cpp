@@ -79,7 +79,7 @@ std::string candidates_table(const DiagnoseResult &D) {
        "|---|---|---|---|---|---|---|\n";
   for (const CandidateOutcome &c : D.candidates) {
     const bool j = c.joint;
-    o << "| " << c.cand.name << " | " << (j ? pc(c.fit.error) : "-") << " | "
+    o << "| " << display_name(c.cand) << " | " << (j ? pc(c.fit.error) : "-") << " | "
       << (j ? pc(c.error_holdout) : "-") << " | " << (j ? fmt("%.4g", c.dbic) : "-") << " | "
       << (j ? fmt("%.3g", c.amplitude_z) : "-") << " | " << (j ? fmt("%.0f%%", 100 * c.gain) : "-")
       << " | " << (c.eligible ? "eligible" : c.why) << " |\n";
