@@ -38,8 +38,9 @@ double ramp_lower(ParamId id, bool signed_K0, double cap) {
 }
 // rtb_params_check keeps the static tangent at x = 0 non-negative:
 // K0 + chain + sat_force / sat_disp >= 0, chain = 1 / (1/Kpa + N/Kr) (the
-// cells relaxed, rtb_static_force); a slack specimen K0 + chain >= 0. to_params holds K0 at kShare of that
-// floor: strictly inside whatever the rounding.
+// cells relaxed, rtb_static_force); a slack specimen K0 + chain >= 0.
+// to_params holds K0 at kShare of that floor: strictly inside whatever the
+// rounding.
 constexpr double kShare = 1.0 - 1e-9;
 struct K0Floor {
   double value, d_Kpa, d_Kr, d_sat_force, d_sat_disp;

@@ -39,9 +39,10 @@ struct ParamTransform {
   std::array<double, P_COUNT> scale{};  // reference magnitude of signed params
 
   double stiffness_cap = 0.0;           // 0: no ceiling (pure log)
-  // K0 may go negative (down to -chain static, rtb_params_check) when a
-  // softening spring is fitted with it: a tanh that takes more than K0
-  // (blindgen softening_s4: 0.8 of the static stiffness, K0 = -435 N/mm).
+  // K0 may go negative (down to -(chain + sat_force/sat_disp), or -chain
+  // with slack: rtb_params_check) when a softening spring is fitted with it:
+  // a tanh that takes more than K0 (blindgen softening_s4: 0.8 of the
+  // static stiffness, K0 = -435 N/mm).
   bool signed_K0 = false;
 
   ParamTransform(std::vector<ParamId> free_ids, const rtb_params &start,
@@ -52,8 +53,8 @@ struct ParamTransform {
   // the Jacobian before the |k_asym| <= K0 clamp).
   Eigen::VectorXd dp_dtheta(const Eigen::VectorXd &theta) const;
   // The whole Jacobian dp_free / dtheta of to_params(theta, base): the
-  // diagonal above, except where to_params clamps. A signed K0 held at
-  // -chain follows Kpa and Kr; k_asym clamped to +-max(K0, 0) follows K0's
+  // diagonal above, except where to_params clamps. A signed K0 held at its
+  // floor follows Kpa, Kr and the softening spring; k_asym clamped to +-max(K0, 0) follows K0's
   // row (or is constant 0) and not its own coordinate, so gradients through
   // the clamps are exact.
   Eigen::MatrixXd jacobian(const Eigen::VectorXd &theta, const rtb_params &base) const;
