@@ -41,21 +41,24 @@ void expect_exact(const rtb_params &p, const std::vector<Record> &recs) {
 
 }  // namespace
 
-class AdjointIntegrators : public ::testing::TestWithParam<int> {};
+// The section 3.4 element as truth, with the integrator under test, and the
+// paper's records made with it.
+class AdjointIntegrators : public ::testing::TestWithParam<int> {
+ protected:
+  void SetUp() override {
+    rtb_params_default(&truth, RTB_MODEL_RT);
+    truth.integrator = GetParam();
+    recs = rtb_test::paper_records(truth, 1.0);
+  }
+  rtb_params truth;
+  std::vector<Record> recs;
+};
 
 TEST_P(AdjointIntegrators, Table1PointOnHystereticData) {
-  rtb_params truth;
-  rtb_params_default(&truth, RTB_MODEL_RT);
-  truth.integrator = GetParam();
-  const std::vector<Record> recs = rtb_test::paper_records(truth, 1.0);
   expect_exact(table1_point(truth), recs);
 }
 
 TEST_P(AdjointIntegrators, SmoothDataNearTruthWithAllExtensions) {
-  rtb_params truth;
-  rtb_params_default(&truth, RTB_MODEL_RT);
-  truth.integrator = GetParam();
-  std::vector<Record> recs = rtb_test::paper_records(truth, 1.0);
   rtb_params p = truth;
   p.K0 *= 1.01;  // near the optimum the gradient is small: the hard case for FD
   p.k3 = 50;
@@ -72,10 +75,6 @@ TEST_P(AdjointIntegrators, SmoothDataNearTruthWithAllExtensions) {
 }
 
 TEST_P(AdjointIntegrators, ClearanceContactAndFreePhases) {
-  rtb_params truth;
-  rtb_params_default(&truth, RTB_MODEL_RT);
-  truth.integrator = GetParam();
-  std::vector<Record> recs = rtb_test::paper_records(truth, 1.0);
   rtb_params p = table1_point(truth);
   p.backlash = 0.05;
   p.maxwell_k = 100;
@@ -87,10 +86,6 @@ TEST_P(AdjointIntegrators, ClearanceContactAndFreePhases) {
 // Issue #10's extensions: a held clearance (xb frozen inside the gap), the
 // friction asymmetry of the dashpot level and the relaxation spectrum.
 TEST_P(AdjointIntegrators, HeldClearanceAsymmetryAndSpectrum) {
-  rtb_params truth;
-  rtb_params_default(&truth, RTB_MODEL_RT);
-  truth.integrator = GetParam();
-  std::vector<Record> recs = rtb_test::paper_records(truth, 1.0);
   rtb_params p = table1_point(truth);
   // Not 0.05: the triangle record would then put x + g/2 exactly on the held
   // position at a sample, a kink of the discrete map that FD straddles.
@@ -107,10 +102,6 @@ TEST_P(AdjointIntegrators, HeldClearanceAsymmetryAndSpectrum) {
 // A slack specimen floats free when it would push: the free phase's implicit
 // root and the taut phase (xb = x) alternate on every cycle of the records.
 TEST_P(AdjointIntegrators, SlackSpecimen) {
-  rtb_params truth;
-  rtb_params_default(&truth, RTB_MODEL_RT);
-  truth.integrator = GetParam();
-  std::vector<Record> recs = rtb_test::paper_records(truth, 1.0);
   rtb_params p = table1_point(truth);
   p.slack = 1;
   p.maxwell_k = 100;
@@ -125,10 +116,6 @@ TEST_P(AdjointIntegrators, SlackSpecimen) {
 // The Mullins softening of the whole RT force (ABI 7): the force's y1
 // partial is -eta Kpa, and a slack end's floating root goes through it.
 TEST_P(AdjointIntegrators, WholeForceMullinsAlsoWhenSlack) {
-  rtb_params truth;
-  rtb_params_default(&truth, RTB_MODEL_RT);
-  truth.integrator = GetParam();
-  std::vector<Record> recs = rtb_test::paper_records(truth, 1.0);
   rtb_params p = table1_point(truth);
   p.mullins = 0.3;
   p.mullins_whole = 1;
@@ -141,10 +128,6 @@ TEST_P(AdjointIntegrators, WholeForceMullinsAlsoWhenSlack) {
 // Ogden-Roxburgh's erf shape of the Mullins loss (ABI 8): the width w is a
 // fitted parameter, and the prior max enters through erf's argument.
 TEST_P(AdjointIntegrators, ErfShapedMullinsOnK0AndOnTheWholeForce) {
-  rtb_params truth;
-  rtb_params_default(&truth, RTB_MODEL_RT);
-  truth.integrator = GetParam();
-  std::vector<Record> recs = rtb_test::paper_records(truth, 1.0);
   rtb_params p = table1_point(truth);
   p.mullins = 0.3;
   p.mullins_width = 0.4;

@@ -83,27 +83,20 @@ TEST(TangentExtensions, Clearance) {
   }
 }
 
+// Linear shape with both integrators; Ogden-Roxburgh's erf shape (ABI 8)
+// on K0 and on the whole force: smooth below the max, so no more kinks than
+// the linear shape.
 TEST(TangentExtensions, Mullins) {
-  for (int integ : {RTB_INTEGRATOR_SDIRK2, RTB_INTEGRATOR_BE}) {
+  const struct { int integ; double width, whole; } cases[] = {
+      {RTB_INTEGRATOR_SDIRK2, 0.0, 0.0}, {RTB_INTEGRATOR_BE, 0.0, 0.0},
+      {RTB_INTEGRATOR_SDIRK2, 0.3, 0.0}, {RTB_INTEGRATOR_SDIRK2, 0.3, 1.0}};
+  for (const auto &c : cases) {
     rtb_params p = paper();
-    p.integrator = integ;
+    p.integrator = c.integ;
     p.mullins = 0.4;
-    SCOPED_TRACE(integ);
-    const Tally t = check_tangent(p, 1.0, 3.0);
-    EXPECT_GE(t.checked, 75);
-    EXPECT_LE(t.kinks, 6);
-  }
-}
-
-// Ogden-Roxburgh's erf shape (ABI 8): smooth below the max, so no more kinks
-// than the linear shape.
-TEST(TangentExtensions, ErfShapedMullins) {
-  for (double whole : {0.0, 1.0}) {
-    rtb_params p = paper();
-    p.mullins = 0.4;
-    p.mullins_width = 0.3;
-    p.mullins_whole = whole;
-    SCOPED_TRACE(whole);
+    p.mullins_width = c.width;
+    p.mullins_whole = c.whole;
+    SCOPED_TRACE(testing::Message() << c.integ << " w " << c.width << " whole " << c.whole);
     const Tally t = check_tangent(p, 1.0, 3.0);
     EXPECT_GE(t.checked, 75);
     EXPECT_LE(t.kinks, 6);

@@ -52,7 +52,7 @@ void switch_off(const Candidate &c, ExtModel &m) {
   if (c.name == "slack") m.p.slack = 0.0;
   if (c.name == "backlash") m.p.backlash_held = 0.0;
   if (c.name == "relaxation_spectrum") m.p.spec_tau_min = m.p.spec_tau_max = 0.0;
-  if (c.name == "softening") m.p.K0 = std::max(m.p.K0, 0.0);  // K0 < 0 needs the spring
+  admit_K0(m.p);
 }
 
 // A Maxwell branch faster than the spectrum's fastest is the spectrum's

@@ -4,7 +4,6 @@
 // verdict_text.cpp; the state they share is in diagnose_stages.h.
 #include "diagnose/diagnose.h"
 
-#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -82,7 +81,7 @@ Current baseline_and_first_round(Context &cx, DiagnoseResult &R,
     if (attempt > 0 || !better) break;
     rtb_params restart = R.baseline_fit.params;
     for (ParamId id : core_params()) param_ref(restart, id) = param_get(better->fit.model.p, id);
-    restart.K0 = std::max(restart.K0, 0.0);  // K0 < 0 only next to a softening spring
+    admit_K0(restart);
     if (!opt.quiet)
       std::fprintf(stderr, "diagnose: the %s fit found a better RT basin (%.3f%% < %.3f%%): refitting "
                    "the baseline from it\n", better->cand.name.c_str(), 100 * better->fit.error,

@@ -68,6 +68,10 @@ constexpr double kAlphaLo = RTB_ALPHA_MIN, kAlphaHi = 1.0;
 double logistic(double t) { return 1.0 / (1.0 + std::exp(-t)); }
 }  // namespace
 
+void admit_K0(rtb_params &p) {
+  if (!(p.sat_force > 0.0)) p.K0 = std::max(p.K0, 0.0);
+}
+
 bool is_ramp(ParamId id) { return kind_of(id, 0.0) == Kind::Ramp; }
 
 std::vector<ParamId> core_params() { return {P_K0, P_Kpa, P_Kr, P_C0, P_alpha}; }
