@@ -117,7 +117,10 @@ TEST(StepInfo, IterationCapIsReportedWithItsResidual) {
 
 // A hard step (a 38 mm jump in 10 us from rest, near-friction dashpots,
 // 25 cells): the line search has to backtrack, and the default 40 iterations
-// are not enough -- the step says so instead of pretending.
+// are not enough -- the step says so instead of pretending. Since session 18
+// (stuck cells locked, stage_newton.cpp) the iterations are cheap, so the
+// 40-iteration cap ends it, well inside the work budget (it converges in 50
+// iterations and ~2200 units; without locking 47 and ~7000).
 TEST(StepInfo, HardStepBacktracksAndReportsNonConvergence) {
   const rtb_params p = rtb_test::hard_jump_params();
   rtb_state s;
@@ -126,30 +129,36 @@ TEST(StepInfo, HardStepBacktracksAndReportsNonConvergence) {
   rtb_step_info info;
   EXPECT_EQ(rtb_step_ex(&s, &p, nullptr, rtb_test::kHardJump, rtb_test::kHardJumpDt, &f, &info),
             RTB_NOT_CONVERGED);
-  // Ended by the work budget (RTB_STEP_WORK, one unit per law evaluation)
-  // before the 40-iteration cap: 25 iterations and their line searches.
-  EXPECT_GT(info.iterations, 10);
-  EXPECT_LT(info.iterations, 40);
-  EXPECT_GT(info.work, RTB_STEP_WORK - p.cells);
-  EXPECT_LE(info.work, RTB_STEP_WORK + 6 * p.cells);
+  EXPECT_EQ(info.iterations, 40);
+  EXPECT_LT(info.work, RTB_STEP_WORK);
   EXPECT_GT(info.backtracks, 0);
   EXPECT_GT(info.residual, 1e-12);
   EXPECT_TRUE(std::isfinite(f));
+  // With room for 100 iterations it converges.
+  rtb_settings set;
+  rtb_settings_default(&set);
+  set.max_iter = 100;
+  ASSERT_EQ(rtb_state_init(&s, &p, 0.0), RTB_OK);
+  EXPECT_EQ(rtb_step_ex(&s, &p, &set, rtb_test::kHardJump, rtb_test::kHardJumpDt, &f, &info),
+            RTB_OK);
+  EXPECT_LE(info.residual, set.tol);
 }
 
 // rtb_settings.max_work bounds a step at run time (issue #11): the same hard
-// step under budgets from 64 to 4096 units spends at most the budget plus
-// the stage starts' 6 N, commits its best iterate (time advances, the force
-// is finite) and says RTB_NOT_CONVERGED; a larger budget is spent further.
+// step (100 iterations allowed) under budgets from 64 to 2048 units, below
+// the ~2200 it needs, spends at most the budget plus the stage starts' 6 N,
+// commits its best iterate (time advances, the force is finite) and says
+// RTB_NOT_CONVERGED; a larger budget is spent further.
 // A budget that a mild step fits in changes nothing.
 TEST(StepInfo, RuntimeWorkBudgetBoundsTheStep) {
   const rtb_params p = rtb_test::hard_jump_params();
   int last_work = 0;
-  for (int budget : {64, 256, 1024, 4096}) {
+  for (int budget : {64, 256, 1024, 2048}) {
     rtb_settings set;
     rtb_settings_default(&set);
     EXPECT_EQ(set.max_work, RTB_STEP_WORK);
     set.max_work = budget;
+    set.max_iter = 100;
     rtb_state s;
     ASSERT_EQ(rtb_state_init(&s, &p, 0.0), RTB_OK);
     double f;
