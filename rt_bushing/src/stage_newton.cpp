@@ -268,8 +268,8 @@ bool start_iterate(const Chain &ch, const rtb_real *f0, const rtb_real *v0, cons
 
 /* Newton's iteration on the active cells from *x (bufs: *x and the trial
  * buffer), until converged or out of the stage's iterations (set->max_iter
- * over all its calls) or budget. Adds its iterations and backtracks to st, sets st->converged; returns the
- * convergence scale. */
+ * over all its calls) or budget. Adds its iterations and backtracks to st,
+ * sets st->converged; returns the convergence scale. */
 rtb_real newton_iterate(const Chain &ch, const rtb_settings *set, const rtb_real *r,
                         rtb_real rnorm, const rtb_real *v_guess, bool free_start,
                         Iterate bufs[2], Iterate **xp, rtb_stage *st, int *budget) {
