@@ -69,6 +69,12 @@ struct Chain {
   int sweep;         /* ... of a sweep over all cells: n * unit */
 };
 
+/* The update variable of DOF k with slope D: its velocity where the dashpot
+ * is steep, h K_kk D > 1 (see the top of this file), else its force. */
+inline bool steep_at(const Chain &ch, int k, rtb_real D) {
+  return (k == 0 ? ch.hK0 : 2.0 * ch.hKr) * D > 1.0;
+}
+
 /* H = f + h K v - r; returns the max-norm (and the squared 2-norm in *sq),
  * or +inf if anything is non-finite. */
 rtb_real residual(const Chain &ch, const rtb_real *f, const rtb_real *v, const rtb_real *r,
@@ -108,7 +114,7 @@ rtb_real law_sweep(const Chain &ch, bool *steep, rtb_real *f, rtb_real *v, rtb_r
     for (int k = 0; k < n; ++k) {
       if (steep[k]) f[k] = rtb_law_eval_v(&ch.law, v[k], &D[k]);
       else v[k] = rtb_law_eval_pow_f(&ch.law, f[k], &D[k]);
-      steep[k] = (k == 0 ? ch.hK0 : 2.0 * ch.hKr) * D[k] > 1.0;
+      steep[k] = steep_at(ch, k, D[k]);
       const rtb_real a = fabs(f[k]);
       fmax_abs = a > fmax_abs ? a : fmax_abs;
     }
@@ -129,7 +135,7 @@ rtb_real law_sweep(const Chain &ch, bool *steep, rtb_real *f, rtb_real *v, rtb_r
     }
   }
   for (int k = 0; k < n; ++k) {
-    steep[k] = (k == 0 ? ch.hK0 : 2.0 * ch.hKr) * D[k] > 1.0;
+    steep[k] = steep_at(ch, k, D[k]);
     const rtb_real a = fabs(f[k]);
     fmax_abs = a > fmax_abs ? a : fmax_abs;
   }
@@ -251,7 +257,7 @@ bool start_iterate(const Chain &ch, const rtb_real *f0, const rtb_real *v0, cons
       x->v[k] = v0[k];
       x->D[k] = D0 ? D0[k] : rtb_law_dvdf_pair(&ch.law, f0[k], v0[k], &evals);
       *budget -= evals * ch.unit;
-      x->steep[k] = (k == 0 ? ch.hK0 : 2.0 * ch.hKr) * x->D[k] > 1.0;
+      x->steep[k] = steep_at(ch, k, x->D[k]);
       x->fmax_abs = fabs(f0[k]) > x->fmax_abs ? fabs(f0[k]) : x->fmax_abs;
     }
     x->hnorm = residual(ch, x->f, x->v, r, x->H, &x->h2);
@@ -369,11 +375,17 @@ void unlock_cells(Chain *ch, int count, rtb_real f, rtb_real f_lock, const rtb_r
   for (int k = first; k < ch->n; ++k) {
     x->f[k] = k > first ? r[k] : (f < 0.0 ? -f_lock : f_lock);
     x->v[k] = rtb_law_eval_pow_f(&ch->law, x->f[k], &x->D[k]);
-    x->steep[k] = (k == 0 ? ch->hK0 : 2.0 * ch->hKr) * x->D[k] > 1.0;
+    x->steep[k] = steep_at(*ch, k, x->D[k]);
     x->fmax_abs = fabs(x->f[k]) > x->fmax_abs ? fabs(x->f[k]) : x->fmax_abs;
   }
   *budget -= count * ch->unit;
   x->hnorm = residual(*ch, x->f, x->v, r, x->H, &x->h2);
+}
+
+/* Force of locked cell k >= ch.n: v = 0 there, so f = r - h K v takes only
+ * the first locked cell's moving neighbour. */
+inline rtb_real locked_force(const Chain &ch, const rtb_real *r, const Iterate &x, int k) {
+  return r[k] + (k == ch.n && k > 0 ? ch.hKr * x.v[k - 1] : 0.0);
 }
 
 }  // namespace
@@ -420,18 +432,16 @@ extern "C" rtb_status rtb_stage_solve(const rtb_params *p, const rtb_settings *s
     scale = newton_iterate(ch, set, r, rnorm, v_guess, free_start && unlock == 1, bufs, &x, st,
                            budget);
     if (ch.n == n || !st->converged) break;
-    const rtb_real f_next = r[ch.n] + ch.hKr * x->v[ch.n - 1];
+    const rtb_real f_next = locked_force(ch, r, *x, ch.n);
     if (fabs(f_next) <= f_lock) break;
     const int count = unlock < n - ch.n ? unlock : n - ch.n;
     if (*budget < ch.sweep + count * ch.unit) { st->converged = 0; break; }
     unlock_cells(&ch, count, f_next, f_lock, r, x, budget);
   }
   st->residual = x->hnorm <= RTB_REAL_MIN ? 0.0 : x->hnorm / scale; /* scale > 0 when H != 0 */
-  /* Locked cells: v = 0, so f = r - h K v takes only the first one's
-   * moving neighbour. */
   for (int k = 0; k < n; ++k) {
     const bool active = k < ch.n;
-    st->f[k] = active ? x->f[k] : r[k] + (k == ch.n && k > 0 ? ch.hKr * x->v[k - 1] : 0.0);
+    st->f[k] = active ? x->f[k] : locked_force(ch, r, *x, k);
     st->v[k] = active ? x->v[k] : 0.0;
     st->D[k] = active ? x->D[k] : 0.0;
     st->y[k] = st->c[k] + ch.h * st->v[k];
