@@ -22,15 +22,19 @@ namespace diag {
 // accepted for the difference). Refit from the STS start of the records the
 // element sees (artefacts removed), extension sizes kept; the refit replaces
 // `fit` (true) when its fit misfit is lower by refit_margin.
+ExtModel sts_core_start(const ExtModel &m, const Context &cx) {
+  ExtModel start = m;
+  const rtb_params sts = sts_initial_guess(artefact_corrected(cx.fit, m), m.p.cells,
+                                           cx.opt.alpha0, cx.opt.misfit.fit_from);
+  for (ParamId id : core_params()) param_ref(start.p, id) = param_get(sts, id);
+  return start;
+}
+
 bool refit_from_sts(const Current &cur, const Context &cx, ExtFitResult &fit) {
   const DiagnoseOptions &opt = cx.opt;
-  ExtModel start = cur.model;
-  const rtb_params sts = sts_initial_guess(artefact_corrected(cx.fit, cur.model),
-                                           cur.model.p.cells, opt.alpha0, opt.misfit.fit_from);
-  for (ParamId id : core_params()) param_ref(start.p, id) = param_get(sts, id);
   ExtFitResult again;
   try {
-    again = fit_extended(cx.fit, start, cur.spec, opt.misfit);
+    again = fit_extended(cx.fit, sts_core_start(cur.model, cx), cur.spec, opt.misfit);
   } catch (const std::exception &) {
     return false;  // the accepted fit stands
   }

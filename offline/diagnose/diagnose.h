@@ -107,10 +107,14 @@ struct DiagnoseOptions {
   // Stage 5e (cause_pair.cpp): when no single word pays in the first round
   // and the baseline is above pair_above_floor times the floor, the
   // pair_leads first-round words with the largest held-out gains (at least
-  // pair_lead_gain) are each tried with a second word.
+  // pair_lead_gain) are each tried with a second word. Three leads from 3%:
+  // with the displacement filtered (stage 0), blindgen mullins+delay_s5's
+  // baseline is 2 points better held out and its delay, the pair's first
+  // member, gains 4% there (15% unfiltered), behind a cubic spring (6%)
+  // and a Mullins loss (5%) that pair with nothing.
   double pair_above_floor = 3.0;
-  int pair_leads = 2;
-  double pair_lead_gain = 0.05;
+  int pair_leads = 3;
+  double pair_lead_gain = 0.03;
   // Stage 1: the friction start is tried when the STS start's baseline fit
   // error is above friction_start_above (damper: 47-48%), and its baseline
   // replaces the STS start's when its fit error is below

@@ -74,6 +74,10 @@ const CandidateOutcome *better_basin(const std::vector<CandidateOutcome> &out, d
 const CandidateOutcome *imposed_cause(const std::vector<CandidateOutcome> &round,
                                       const std::string &name);
 
+// `m` with its five RT parameters from the STS start of the records the
+// element sees (artefacts removed); extension sizes and settings kept.
+ExtModel sts_core_start(const ExtModel &m, const Context &cx);
+
 // Stage 5c: refit the accepted cause's model from the STS start; true when
 // the refit replaced `fit`.
 bool refit_from_sts(const Current &cur, const Context &cx, ExtFitResult &fit);
