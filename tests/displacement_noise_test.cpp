@@ -60,9 +60,10 @@ double velocity_error_rms(const Record &r, double f_hz) {
 }
 
 TEST(DisplacementDenoise, SmallDisplacementNoiseIsFilteredForTheDerivatives) {
-  // K sigma_x = 0.2 sigma_F: negligible in K x, but the velocity noise
-  // sqrt(2) sigma_x/dt is 0.07 of the 31 mm/s peak (independent generator,
-  // seed 5: a dashpot named `delay` and a mass `unexplained` at 0.24).
+  // K sigma_x = 0.2 sigma_F, under the old threshold of 0.25: negligible in
+  // K x, yet a dashpot or a mass sees it amplified by 1/dt or 1/dt^2
+  // (independent generator, seed 5: a dashpot named `delay` and a mass
+  // `unexplained` at 0.24). The filter must cut the velocity noise 5x.
   std::vector<Record> r = {noisy_sine(5.0, 5e-5, 4)};
   const double before = velocity_error_rms(r[0], 5.0);
   const DisplacementDenoise d = denoise_displacement(r);

@@ -15,13 +15,6 @@
 namespace rtb {
 namespace diag {
 
-// Stage 5c: the accepted cause's joint fit started from the model without
-// it, whose core parameters compensated for the missing cause; that basin
-// can hold the fit (refgen offset_s6: held-out 4.89% after the offset, 3.40%
-// for a fresh RT fit of the offset-corrected records, and two more words were
-// accepted for the difference). Refit from the STS start of the records the
-// element sees (artefacts removed), extension sizes kept; the refit replaces
-// `fit` (true) when its fit misfit is lower by refit_margin.
 ExtModel sts_core_start(const ExtModel &m, const Context &cx) {
   ExtModel start = m;
   const rtb_params sts = sts_initial_guess(artefact_corrected(cx.fit, m), m.p.cells,
@@ -30,6 +23,13 @@ ExtModel sts_core_start(const ExtModel &m, const Context &cx) {
   return start;
 }
 
+// Stage 5c: the accepted cause's joint fit started from the model without
+// it, whose core parameters compensated for the missing cause; that basin
+// can hold the fit (refgen offset_s6: held-out 4.89% after the offset, 3.40%
+// for a fresh RT fit of the offset-corrected records, and two more words were
+// accepted for the difference). Refit from the STS start of the records the
+// element sees (artefacts removed), extension sizes kept; the refit replaces
+// `fit` (true) when its fit misfit is lower by refit_margin.
 bool refit_from_sts(const Current &cur, const Context &cx, ExtFitResult &fit) {
   const DiagnoseOptions &opt = cx.opt;
   ExtFitResult again;

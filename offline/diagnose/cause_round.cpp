@@ -124,10 +124,14 @@ void joint_fits(std::vector<CandidateOutcome> &out, const Current &cur, const Co
       }
       if (chain_collapsed(co.fit.model.p)) {
         with.back() = co.cand;  // the definition kept above
-        const ExtFitResult again =
-            fit_extended(cx.fit, sts_core_start(co.fit.model, cx), combined_spec(with, cx.sc),
-                         cx.opt.misfit);
-        if (again.J < co.fit.J) co.fit = again;
+        try {
+          const ExtFitResult again =
+              fit_extended(cx.fit, sts_core_start(co.fit.model, cx), combined_spec(with, cx.sc),
+                           cx.opt.misfit);
+          if (again.J < co.fit.J) co.fit = again;
+        } catch (const std::exception &) {
+          // the restart failed: the collapsed fit stands
+        }
       }
       co.joint = std::isfinite(co.fit.J);
       if (!co.joint) co.why = "joint fit failed: non-finite misfit";
