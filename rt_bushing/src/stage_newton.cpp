@@ -53,6 +53,7 @@
 #include <math.h>
 
 #include "dashpot_law.h"
+#include "law_lanes.h"
 #include "newton_step.h"
 #include "rtb_internal.h"
 #include "tridiagonal.h"
@@ -110,16 +111,9 @@ rtb_real law_sweep(const Chain &ch, bool *steep, rtb_real *f, rtb_real *v, rtb_r
                    int *budget) {
   const int n = ch.n;
   rtb_real fmax_abs = 0.0;
-  if (!(ch.law.s > 0.0)) { /* eq. (1): one evaluation per cell, the choice in the same pass */
-    for (int k = 0; k < n; ++k) {
-      if (steep[k]) f[k] = rtb_law_eval_v(&ch.law, v[k], &D[k]);
-      else v[k] = rtb_law_eval_pow_f(&ch.law, f[k], &D[k]);
-      steep[k] = steep_at(ch, k, D[k]);
-      const rtb_real a = fabs(f[k]);
-      fmax_abs = a > fmax_abs ? a : fmax_abs;
-    }
+  if (!(ch.law.s > 0.0)) { /* eq. (1): one power per cell, all cells at once */
+    rtb_law_sweep_lanes(&ch.law, n, steep, f, v, D);
     *budget -= n;
-    return fmax_abs;
   } else {
     for (int k = 0; k < n; ++k) {
       if (steep[k]) {
