@@ -9,6 +9,14 @@
 #include "dashpot_law.h"
 #include "rtb_scalar.h"
 
+/* The vector kernels exist for x86-64 GCC builds in double precision;
+ * elsewhere the sweep is the scalar law. */
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && !defined(RTB_SINGLE)
+#define RTB_LAW_LANES 1
+#else
+#define RTB_LAW_LANES 0
+#endif
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -20,14 +28,31 @@ extern "C" {
 void rtb_law_sweep_lanes(const rtb_law *L, int n, const bool *steep, rtb_real *f, rtb_real *v,
                          rtb_real *D);
 
-/* For tests: exp_x[k] = exp(x[k]) and log_x[k] = ln(x[k]) by the vector
- * kernels, valid for -707 <= x <= 708 and for positive normal x
- * respectively. Returns 0 (nothing written) where the kernels do not run
- * (no AVX, not an x86-64 GCC build, or single precision). */
-int rtb_law_lanes_kernels(int n, const double *x, double *exp_x, double *log_x);
+/* Lanes per vector that rtb_law_sweep_lanes uses on this CPU: 8 (AVX-512),
+ * 4 (AVX2) or 1 (the scalar law). */
+int rtb_law_lanes_width(void);
+
+#if RTB_LAW_LANES
+/* The kernels of one width (law_lanes_avx2.cpp, law_lanes_avx512.cpp), for
+ * the dispatch and for tests: call only where the CPU has the instruction
+ * set (rtb_law_lanes_width() >= the width). *_kernels: exp_x = exp(x) and
+ * log_x = ln(x), valid for -707 <= x <= 708 and for positive normal x. */
+void rtb_law_sweep_w4(const rtb_law *L, int n, const bool *steep, double *f, double *v, double *D);
+void rtb_law_sweep_w8(const rtb_law *L, int n, const bool *steep, double *f, double *v, double *D);
+void rtb_law_kernels_w4(int n, const double *x, double *exp_x, double *log_x);
+void rtb_law_kernels_w8(int n, const double *x, double *exp_x, double *log_x);
+#endif
 
 #ifdef __cplusplus
 }
 #endif
+
+/* The scalar law (libm) on cell k: the reference of the kernels and their
+ * fallback outside the fast ranges. */
+static inline void rtb_law_cell(const rtb_law *L, int k, const bool *steep, rtb_real *f,
+                                rtb_real *v, rtb_real *D) {
+  if (steep[k]) f[k] = rtb_law_eval_v(L, v[k], &D[k]);
+  else v[k] = rtb_law_eval_pow_f(L, f[k], &D[k]);
+}
 
 #endif

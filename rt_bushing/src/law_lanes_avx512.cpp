@@ -1,0 +1,16 @@
+/* law_lanes_avx512.cpp -- the law sweep's kernels (law_lanes_kernel.h) for
+ * AVX-512: 8 doubles per vector. Compiled for that instruction set whatever
+ * the build's -march; law_lanes.cpp calls it only where the CPU has it.
+ */
+#include "law_lanes.h"
+
+#if RTB_LAW_LANES
+/* No fused multiply-add whatever the build flags say (AVX-512 brings FMA
+ * with it): the kernels give the same bits as every other build. */
+#pragma GCC optimize("fp-contract=off")
+#pragma GCC target("avx512f,avx512dq")
+#define LANES_W 8
+#define LANES_SWEEP rtb_law_sweep_w8
+#define LANES_KERNELS rtb_law_kernels_w8
+#include "law_lanes_kernel.h"
+#endif
