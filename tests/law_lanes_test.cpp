@@ -7,6 +7,7 @@
 // every vector width this CPU has (AVX2: 4, AVX-512: 8) gives the same bits.
 #include <gtest/gtest.h>
 
+#include <cfenv>
 #include <cfloat>
 #include <cmath>
 #include <algorithm>
@@ -190,6 +191,27 @@ TEST(LawLanes, EdgesTakeTheScalarLaw) {
           EXPECT_EQ(std::signbit(v[k]), std::signbit(vs[k])) << "x " << x << " cell " << k;
         }
       }
+}
+
+// A host may trap FE_INVALID / FE_DIVBYZERO. The lanes past n hold whatever
+// the arrays' capacity holds (NaN here) and cells at rest give 0 / 0 in a
+// naive slope: neither may raise a flag the scalar law does not raise.
+TEST(LawLanes, RaisesNoFloatingPointExceptionOfItsOwn) {
+  for (int n : {1, 3, 5, 8, 11, 15, 32}) {
+    rtb_law L;
+    rtb_law_init(&L, 1.3, 0.4, 0.0, 0.2);
+    bool steep[RTB_MAX_CELLS];
+    double f[RTB_MAX_CELLS], v[RTB_MAX_CELLS], D[RTB_MAX_CELLS];
+    for (int k = 0; k < RTB_MAX_CELLS; ++k) {
+      steep[k] = k % 2 == 0;
+      f[k] = v[k] = k >= n ? std::nan("") : (k % 3 == 0 ? 0.0 : (k % 2 ? -0.7 : 2.5));
+    }
+    std::feclearexcept(FE_ALL_EXCEPT);
+    rtb_law_sweep_lanes(&L, n, steep, f, v, D);
+    EXPECT_FALSE(std::fetestexcept(FE_INVALID)) << "n " << n;
+    EXPECT_FALSE(std::fetestexcept(FE_DIVBYZERO)) << "n " << n;
+    for (int k = 0; k < n; ++k) EXPECT_TRUE(std::isfinite(f[k]) && std::isfinite(D[k])) << k;
+  }
 }
 
 }  // namespace

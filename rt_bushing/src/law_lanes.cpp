@@ -15,6 +15,11 @@
  * kernels in 128-bit SSE2 registers were slower than glibc, and 256-bit
  * AVX without AVX2 no faster than AVX2.
  *
+ * The CPU check reads libgcc's __cpu_model, filled by a constructor before
+ * main: a host that steps the element from its own static constructors
+ * before that gets the scalar law (the same physics to rounding), never a
+ * wrong kernel.
+ *
  * AVX-512 on Intel CPUs before Ice Lake lowers the core's clock while
  * 512-bit instructions run; a host that cares builds with
  * -DRTB_LANES_NO_AVX512 and gets the 4-lane kernels there.

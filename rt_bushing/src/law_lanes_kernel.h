@@ -94,26 +94,34 @@ struct Block {
 };
 inline Block law_block(const rtb_law *L, int w, const bool *steep, const double *f,
                        const double *v) {
-  vd F, V;  /* lanes w.. read the arrays' unused capacity; their results are dropped */
+  /* Lanes w.. read the arrays' unused capacity; they compute on 1.0, not on
+   * what lies there, and their results are dropped. No lane meets 0 / 0 or a
+   * NaN it did not bring, so a host that traps FE_INVALID or FE_DIVBYZERO
+   * sees no more than from the scalar law (LawLanes.RaisesNoFloatingPoint-
+   * ExceptionOfItsOwn). */
+  vd F, V;
   memcpy(&F, f, sizeof F);
   memcpy(&V, v, sizeof V);
-  vi S = {};
-  for (int j = 0; j < LANES_W && j < w; ++j) S[j] = steep[j] ? -1 : 0;
-  const vd X = select(S, V, F);
+  vi S = {}, in = {};
+  for (int j = 0; j < LANES_W && j < w; ++j) S[j] = steep[j] ? -1 : 0, in[j] = -1;
+  const vd X = select(in, select(S, V, F), splat(1.0));
   const vi neg = X < splat(0.0), pos = X > splat(0.0);
   const vd a = abs_lanes(X);
-  const vd C0s = select(neg, splat(L->C0m), splat(L->C0p));
-  const vd U = select(S, a, a * select(neg, splat(L->inv_C0m), splat(L->inv_C0p)));
-  const vd E = log_lanes(U) * select(S, splat(L->alpha), splat(L->inv_alpha));
   const vi zero = a == splat(0.0);
+  const vd C0s = select(neg, splat(L->C0m), splat(L->C0p));
+  const vd Ua = select(S, a, a * select(neg, splat(L->inv_C0m), splat(L->inv_C0p)));
+  const vd U = select(zero, splat(1.0), Ua);            /* ln 1 = 0 where u = 0 */
+  const vd E = log_lanes(U) * select(S, splat(L->alpha), splat(L->inv_alpha));
   const vd M = select(zero, splat(0.0), exp_lanes(E));  /* 0^c = 0 */
   const vd out = select(S, C0s * M, M);                 /* |f| where steep, else |v| */
-  const vd Dl = select(S, a, M) / (splat(L->alpha) * select(S, out, a));
+  const vi moving = out > splat(0.0);
+  const vd den = select(moving, splat(L->alpha) * select(S, out, a), splat(1.0));
+  const vd Dl = select(S, a, M) / den;
   const vd Y = select(pos, out, select(neg, -out, splat(0.0)));
   Block b;
   b.f = select(S, Y, F);
   b.v = select(S, V, Y);
-  b.D = select(out > splat(0.0), Dl, splat(0.0));
+  b.D = select(moving, Dl, splat(0.0));
   b.ok = zero | ((U >= splat(DBL_MIN)) & (U <= splat(DBL_MAX)) & (E >= splat(-707.0)) &
                  (E <= splat(708.0)));
   return b;
@@ -137,6 +145,8 @@ inline long long store_block(const Block &b, int k, int n, double *f, double *v,
   for (int j = 0; j < w; ++j) all &= b.ok[j];
   return all;
 }
+
+static_assert(RTB_MAX_CELLS % LANES_W == 0, "a block never reads past the arrays' capacity");
 
 }  // namespace
 
