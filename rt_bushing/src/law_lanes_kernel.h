@@ -8,8 +8,8 @@
  * then include this file. GCC vector extensions, so the code reads as
  * scalar arithmetic; every operation is an IEEE operation on each lane, in
  * the order written, so both widths give the same bits (tests/
- * law_lanes_test.cpp checks it where the CPU has both). No FMA: the
- * library is built with -ffp-contract=off.
+ * law_lanes_test.cpp checks it where the CPU has both). No FMA: the two
+ * files turn contraction off themselves, whatever the build flags.
  */
 #include <float.h>
 #include <math.h>
