@@ -83,10 +83,7 @@ TEST(LawLanes, ExpAndLogWithinAnUlp) {
 
 // The scalar law (dashpot_law.h, libm) on cells 0..n-1, as the sweep would.
 void scalar_sweep(const rtb_law &L, int n, const bool *steep, double *f, double *v, double *D) {
-  for (int k = 0; k < n; ++k) {
-    if (steep[k]) f[k] = rtb_law_eval_v(&L, v[k], &D[k]);
-    else v[k] = rtb_law_eval_pow_f(&L, f[k], &D[k]);
-  }
+  for (int k = 0; k < n; ++k) rtb_law_cell(&L, k, steep, f, v, D);
 }
 
 // |a - b| within tol relative to the larger (exactly equal for 0 and inf;
