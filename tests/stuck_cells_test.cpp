@@ -8,40 +8,14 @@
 
 #include <cmath>
 
-#include "dashpot_law.h"
 #include "rt_bushing/rt_bushing.h"
 #include "rtb_internal.h"
-#include "tridiagonal.h"
 #include "tests/physics_helpers.h"
+#include "tests/stage_residual.h"
 
 namespace {
 
 constexpr double kTwoPi = 6.283185307179586476925;
-
-// max |H| / scale of a returned stage with v = phi(f) (eq. (1)) for every
-// cell: H = f + h K phi(f) - (b - K c), scale = max(|f|, |b - K c|) as the
-// solver's own test. *locked: the cells returned at v = 0, D = 0; *loaded:
-// those of them that carry a force (f != 0: the law gives v != 0 there).
-double full_residual(const rtb_params &p, const rtb_stage &st, int *locked, int *loaded) {
-  const int n = p.cells;
-  double r[RTB_MAX_CELLS], v[RTB_MAX_CELLS], Kv[RTB_MAX_CELLS];
-  rtb_chain_apply(n, p.Kpa, p.Kr, st.c, r);
-  double scale = 0.0;
-  *locked = *loaded = 0;
-  for (int k = 0; k < n; ++k) {
-    r[k] = (k == 0 ? st.b1 : 0.0) - r[k];
-    v[k] = rtb_law_velocity(st.f[k], p.C0, p.alpha);
-    if (st.v[k] == 0.0 && st.D[k] == 0.0) {
-      ++*locked;
-      *loaded += st.f[k] != 0.0;
-    }
-    scale = std::fmax(scale, std::fmax(std::fabs(st.f[k]), std::fabs(r[k])));
-  }
-  rtb_chain_apply(n, p.Kpa, p.Kr, v, Kv);
-  double h = 0.0;
-  for (int k = 0; k < n; ++k) h = std::fmax(h, std::fabs(st.f[k] + st.h * Kv[k] - r[k]));
-  return scale > 0.0 ? h / scale : h;
-}
 
 // The section 3.4 element on the benchmark's 1 mm, 10 Hz sine: the deep
 // cells lock (v ~ 1e-26 and below there), and every stage still solves the
@@ -70,7 +44,7 @@ TEST(StuckCells, LockedStagesSolveTheFullStageEquation) {
       ASSERT_EQ(rtb_step_detailed(&s, &p, &set, x, 1e-3, &out, &F, &dF, st), RTB_OK) << i;
       for (int j = 0; j < rtb_integrator_stages(&p); ++j) {
         int locked = 0, loaded = 0;
-        worst = std::fmax(worst, full_residual(p, st[j], &locked, &loaded));
+        worst = std::fmax(worst, rtbtest::full_residual(p, st[j], &locked, &loaded));
         stages_with_lock += loaded > 0;
         fewer_locked += last_locked >= 0 && locked < last_locked;
         last_locked = locked;

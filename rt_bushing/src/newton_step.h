@@ -220,4 +220,48 @@ static inline rtb_real rtb_newton_second_order(int n, rtb_real hK0, rtb_real hKr
   return m;
 }
 
+/* The pair after an update dc taken without a law sweep (eq. (1) only): the
+ * update variable moves by its linear part (steep DOFs: v + D dc, the
+ * others: f + dc) and the other one by its Taylor expansion to second order,
+ * with the coefficients of rtb_newton_second_order; t3f / t3v receive the
+ * third-order terms, psi_3 (D dc)^3 / 6 = (alpha-1)(alpha-2)/6 rel^2 dc on
+ * steep DOFs and phi_3 dc^3 / 6 = (1/alpha-1)(1/alpha-2)/6 D rel^2 dc on
+ * the others (psi_3, phi_3 the third derivatives of eq. (1) and its inverse;
+ * rel = D dc / v, resp. dc / f), i.e. how far the pair is off the curve to
+ * leading order. Returns the largest relative move |rel| (+inf where a DOF
+ * at the origin moves: the expansion does not hold there). */
+static inline rtb_real rtb_newton_expanded_pair(int n, rtb_real alpha, const bool *steep,
+                                                const rtb_real *f, const rtb_real *v,
+                                                const rtb_real *D, const rtb_real *dc,
+                                                rtb_real *f_out, rtb_real *v_out,
+                                                rtb_real *t3f, rtb_real *t3v) {
+  const rtb_real cs = 0.5 * (alpha - 1.0), cf = 0.5 * (1.0 / alpha - 1.0);
+  const rtb_real c3s = (alpha - 1.0) * (alpha - 2.0) / 6.0;
+  const rtb_real c3f = (1.0 / alpha - 1.0) * (1.0 / alpha - 2.0) / 6.0;
+  rtb_real mv = 0.0;
+  for (int k = 0; k < n; ++k) {
+    const rtb_real du = steep[k] ? D[k] * dc[k] : dc[k];
+    const rtb_real u = steep[k] ? v[k] : f[k];
+    rtb_real rel = 0.0;
+    if (du != 0.0) {
+      if (u == 0.0) return INFINITY;
+      rel = du / u;
+    }
+    const rtb_real a = fabs(rel);
+    mv = a > mv ? a : mv;
+    if (steep[k]) {
+      v_out[k] = v[k] + du;
+      f_out[k] = f[k] + dc[k] + cs * rel * dc[k];
+      t3f[k] = c3s * rel * rel * dc[k];
+      t3v[k] = 0.0;
+    } else {
+      f_out[k] = f[k] + dc[k];
+      v_out[k] = v[k] + D[k] * dc[k] + cf * D[k] * rel * dc[k];
+      t3f[k] = 0.0;
+      t3v[k] = c3f * D[k] * rel * rel * dc[k];
+    }
+  }
+  return mv;
+}
+
 #endif

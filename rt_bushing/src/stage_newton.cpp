@@ -146,17 +146,22 @@ struct Iterate {
 /* What the linearised update dl would leave of the residual, or +inf when
  * that cannot be told. Eq. (1): the second-order term Q (newton_step.h),
  * computed directly, where it is the leading one (relative moves below
- * alpha / 10), and Q is kept for chebyshev_step (*have_Q). Smoothed law: in
- * the quadratic phase |H_next| ~ |H|^3 / |H_prev|^2 (|H_k+1| = c |H_k|^2, c
- * from the last full step). */
+ * alpha / 10), and Q is kept for chebyshev_step (*have_Q); *cubic the order
+ * of what Chebyshev's update would leave, |Q| move (1 + 1/alpha) (the third
+ * order over the second is ~ move / alpha), to skip sweep_free_chebyshev
+ * where it cannot succeed. Smoothed law: in the quadratic phase |H_next| ~
+ * |H|^3 / |H_prev|^2 (|H_k+1| = c |H_k|^2, c from the last full step). */
 rtb_real linearised_residual(const Chain &ch, const Iterate &x, const rtb_real *dl,
-                             rtb_real prev_hnorm, rtb_real *Q, bool *have_Q) {
+                             rtb_real prev_hnorm, rtb_real *Q, bool *have_Q, rtb_real *cubic) {
+  *cubic = INFINITY;
   if (!(ch.law.s > 0.0)) {
     *have_Q = true;
     rtb_real move;
     const rtb_real q = rtb_newton_second_order(ch.n, ch.hK0, ch.hKr, ch.law.alpha, x.steep, x.f,
                                                x.v, x.D, dl, Q, &move);
-    return move <= 0.1 * ch.law.alpha ? q : INFINITY;
+    if (!(move <= 0.1 * ch.law.alpha)) return INFINITY;
+    *cubic = q * move * (1.0 + ch.law.inv_alpha);
+    return q;
   }
   if (!(x.hnorm < 1e-3 * prev_hnorm)) return INFINITY;
   const rtb_real ratio = x.hnorm / prev_hnorm;
@@ -183,6 +188,39 @@ bool chebyshev_step(const Chain &ch, const Iterate &x, const rtb_newton_lu &lu,
   }
   if (!(cn <= 0.5 * dn)) return false;
   for (int k = 0; k < ch.n; ++k) dc[k] = dl[k] - dc[k];
+  return true;
+}
+
+/* The Chebyshev update dc taken without a law sweep (eq. (1) only): the pair
+ * expanded to second order along it (rtb_newton_expanded_pair), and its
+ * residual with the third-order terms added -- the residual of the pair the
+ * law would give, to leading order. Accepted into *out (the trial buffer)
+ * when that is below `bound` and every relative move is below alpha / 10,
+ * where the next order is at most a tenth of the third. */
+bool sweep_free_chebyshev(const Chain &ch, const Iterate &x, const rtb_real *dc,
+                          const rtb_real *r, rtb_real bound, Iterate *out) {
+  if (ch.law.s > 0.0) return false;
+  rtb_real t3f[RTB_MAX_CELLS], t3v[RTB_MAX_CELLS], E[RTB_MAX_CELLS];
+  const rtb_real move = rtb_newton_expanded_pair(ch.n, ch.law.alpha, x.steep, x.f, x.v, x.D, dc,
+                                                 out->f, out->v, t3f, t3v);
+  if (!(move <= 0.1 * ch.law.alpha)) return false;
+  rtb_real sq;
+  if (!(residual(ch, out->f, out->v, r, out->H, &sq) <= RTB_REAL_MAX)) return false;
+  rtb_newton_hK_apply(ch.n, ch.hK0, ch.hKr, t3v, E);
+  rtb_real e = 0.0, fm = 0.0;
+  for (int k = 0; k < ch.n; ++k) {
+    const rtb_real a = fabs(out->H[k] + E[k] + t3f[k]);
+    e = a > e ? a : e;
+    fm = fabs(out->f[k]) > fm ? fabs(out->f[k]) : fm;
+  }
+  if (!(e <= bound)) return false;
+  for (int k = 0; k < ch.n; ++k) {
+    out->D[k] = x.D[k];
+    out->steep[k] = x.steep[k];
+  }
+  out->fmax_abs = fm;
+  out->hnorm = e; /* the predicted residual, reported in st */
+  out->h2 = sq;
   return true;
 }
 
@@ -295,8 +333,10 @@ rtb_real newton_iterate(const Chain &ch, const rtb_settings *set, const rtb_real
      * adjoint see a slope off by O(|dl|/|f|) ~ tol. Only after a full step
      * of this stage, so every stage's pair has been on the curve once. */
     bool have_Q = false;
-    const rtb_real left =
-        prev_hnorm > 0.0 ? linearised_residual(ch, *x, dl, prev_hnorm, Q, &have_Q) : INFINITY;
+    rtb_real cubic = INFINITY;
+    const rtb_real left = prev_hnorm > 0.0
+                              ? linearised_residual(ch, *x, dl, prev_hnorm, Q, &have_Q, &cubic)
+                              : INFINITY;
     if (left <= 0.01 * set->tol * scale) {
       for (int k = 0; k < n; ++k) {
         x->v[k] += x->D[k] * dl[k];
@@ -308,6 +348,15 @@ rtb_real newton_iterate(const Chain &ch, const rtb_settings *set, const rtb_real
       break;
     }
     const bool cheb = chebyshev_step(ch, *x, lu, dl, have_Q, Q, dc);
+    if (cheb && cubic <= set->tol * scale &&
+        sweep_free_chebyshev(ch, *x, dc, r, 0.01 * set->tol * scale, trial)) {
+      Iterate *tmp = x;
+      x = trial;
+      trial = tmp;
+      st->converged = 1;
+      ++it;
+      break;
+    }
 
     /* Line search on the merit 1/2 |H|_2^2. Both update rules leave the
      * pair on the dashpot curve with df/dt = df at t = 0, so dH/dt = J df = -H
