@@ -113,18 +113,26 @@ TEST(SweepFreeUpdate, ExpandedPairIsTheLawsTaylorExpansion) {
         const double rel = sign * 1e-3;
         // steep: v moves by D dc = rel v; else f moves by dc = rel f
         const double dc = steep ? rel * v / D : rel * f;
-        double fo, vo, t3f, t3v;
+        // The slope goes as (1 + rel)^q, q = 1 - alpha (steep: 1/psi') or
+        // 1/alpha - 1 (phi'): what its first-order update leaves is
+        // q (q - 1) rel^2 / 2 of it.
+        auto second_order = [&](double q) { return 0.55 * std::fabs(q * (q - 1.0)) * rel * rel + 1e-14; };
+        double fo, vo, Do, t3f, t3v;
         const double move =
-            rtb_newton_expanded_pair(1, alpha, &steep, &f, &v, &D, &dc, &fo, &vo, &t3f, &t3v);
+            rtb_newton_expanded_pair(1, alpha, &steep, &f, &v, &D, &dc, &fo, &vo, &Do, &t3f, &t3v);
         EXPECT_NEAR(move, 1e-3, 1e-15);
         if (steep) {
           const double exact = rtb_law_force(vo, C0, alpha);  // psi(v + D dc)
+          const double D_exact = vo / (alpha * exact);
+          EXPECT_LE(std::fabs(Do - D_exact), second_order(1.0 - alpha) * D_exact) << "alpha " << alpha;
           EXPECT_EQ(t3v, 0.0);
           EXPECT_LE(std::fabs(exact - fo - t3f), 0.02 * std::fabs(t3f) + 1e-14 * std::fabs(fo))
               << "alpha " << alpha << " sign " << sign << ": psi - pair " << exact - fo
               << ", t3 " << t3f;
         } else {
           const double exact = rtb_law_velocity(fo, C0, alpha);  // phi(f + dc)
+          const double D_exact = exact / (alpha * fo);
+          EXPECT_LE(std::fabs(Do - D_exact), second_order(1.0 / alpha - 1.0) * D_exact) << "alpha " << alpha;
           EXPECT_EQ(t3f, 0.0);
           // alpha = 0.5: phi(f) = (f / C0)^2, no third-order term (t3 = 0)
           EXPECT_LE(std::fabs(exact - vo - t3v), 0.02 * std::fabs(t3v) + 1e-14 * std::fabs(vo))

@@ -228,13 +228,17 @@ static inline rtb_real rtb_newton_second_order(int n, rtb_real hK0, rtb_real hKr
  * steep DOFs and phi_3 dc^3 / 6 = (1/alpha-1)(1/alpha-2)/6 D rel^2 dc on
  * the others (psi_3, phi_3 the third derivatives of eq. (1) and its inverse;
  * rel = D dc / v, resp. dc / f), i.e. how far the pair is off the curve to
- * leading order. Returns the largest relative move |rel| (+inf where a DOF
- * at the origin moves: the expansion does not hold there). */
+ * leading order. D_out: the slope dv/df at the new pair to first order,
+ * D (1 - (alpha-1) rel) on steep DOFs (1/psi'(v (1 + rel))) and
+ * D (1 + (1/alpha-1) rel) on the others (phi'(f (1 + rel))), so the tangent
+ * and the next stage's start see the slope to second order in the move.
+ * Returns the largest relative move |rel| (+inf where a DOF at the origin
+ * moves: the expansion does not hold there). */
 static inline rtb_real rtb_newton_expanded_pair(int n, rtb_real alpha, const bool *steep,
                                                 const rtb_real *f, const rtb_real *v,
                                                 const rtb_real *D, const rtb_real *dc,
                                                 rtb_real *f_out, rtb_real *v_out,
-                                                rtb_real *t3f, rtb_real *t3v) {
+                                                rtb_real *D_out, rtb_real *t3f, rtb_real *t3v) {
   const rtb_real cs = 0.5 * (alpha - 1.0), cf = 0.5 * (1.0 / alpha - 1.0);
   const rtb_real c3s = (alpha - 1.0) * (alpha - 2.0) / 6.0;
   const rtb_real c3f = (1.0 / alpha - 1.0) * (1.0 / alpha - 2.0) / 6.0;
@@ -252,11 +256,13 @@ static inline rtb_real rtb_newton_expanded_pair(int n, rtb_real alpha, const boo
     if (steep[k]) {
       v_out[k] = v[k] + du;
       f_out[k] = f[k] + dc[k] + cs * rel * dc[k];
+      D_out[k] = D[k] - 2.0 * cs * rel * D[k];
       t3f[k] = c3s * rel * rel * dc[k];
       t3v[k] = 0.0;
     } else {
       f_out[k] = f[k] + dc[k];
       v_out[k] = v[k] + D[k] * dc[k] + cf * D[k] * rel * dc[k];
+      D_out[k] = D[k] + 2.0 * cf * rel * D[k];
       t3f[k] = 0.0;
       t3v[k] = c3f * D[k] * rel * rel * dc[k];
     }

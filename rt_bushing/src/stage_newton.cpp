@@ -202,7 +202,7 @@ bool sweep_free_chebyshev(const Chain &ch, const Iterate &x, const rtb_real *dc,
   if (ch.law.s > 0.0) return false;
   rtb_real t3f[RTB_MAX_CELLS], t3v[RTB_MAX_CELLS], E[RTB_MAX_CELLS];
   const rtb_real move = rtb_newton_expanded_pair(ch.n, ch.law.alpha, x.steep, x.f, x.v, x.D, dc,
-                                                 out->f, out->v, t3f, t3v);
+                                                 out->f, out->v, out->D, t3f, t3v);
   if (!(move <= 0.1 * ch.law.alpha)) return false;
   rtb_real sq;
   if (!(residual(ch, out->f, out->v, r, out->H, &sq) <= RTB_REAL_MAX)) return false;
@@ -214,10 +214,7 @@ bool sweep_free_chebyshev(const Chain &ch, const Iterate &x, const rtb_real *dc,
     fm = fabs(out->f[k]) > fm ? fabs(out->f[k]) : fm;
   }
   if (!(e <= bound)) return false;
-  for (int k = 0; k < ch.n; ++k) {
-    out->D[k] = x.D[k];
-    out->steep[k] = x.steep[k];
-  }
+  for (int k = 0; k < ch.n; ++k) out->steep[k] = x.steep[k];
   out->fmax_abs = fm;
   out->hnorm = e; /* the predicted residual, reported in st */
   out->h2 = sq;
@@ -262,12 +259,17 @@ int active_cells(const Chain &ch, rtb_real tol, rtb_real rnorm, const rtb_real *
   const rtb_real v_lock = RTB_LOCK_MARGIN * tol * rnorm / kmax;
   if (!(v_lock > 0.0 && v_lock <= RTB_REAL_MAX)) return n;
   const rtb_real level = ch.law.C0m < ch.law.C0p ? ch.law.C0m : ch.law.C0p;
-  /* No exp/log when even the last cell cannot lock: v_lock < 2^e, so
-   * f_lock < level 2^ceil(alpha e) (the usual case for alpha near 1). */
+  /* A lower bound of v_lock^alpha within a factor 1.3, without exp/log (a
+   * smaller threshold only locks fewer cells): with v_lock = m 2^e, m in
+   * [0.5, 1), log2 v_lock >= e + 2 m - 2 (the chord of the concave log2),
+   * and for x = alpha (e + 2 m - 2), 2^x >= 2^floor(x) (1 + (x - floor(x))
+   * ln 2) (the tangent of the convex 2^x). */
   int e;
-  frexp(v_lock, &e);
-  if (fabs(r[n - 1]) >= ldexp(level, (int)ceil(ch.law.alpha * e))) return n;
-  const rtb_real fl = level * exp(ch.law.alpha * log(v_lock));
+  const rtb_real m = frexp(v_lock, &e);
+  const rtb_real x = ch.law.alpha * ((rtb_real)e + 2.0 * m - 2.0);
+  int fx = (int)x;
+  fx -= (rtb_real)fx > x;
+  const rtb_real fl = ldexp(level, fx) * (1.0 + (x - (rtb_real)fx) * 0.69314718055994530942);
   *f_lock = fl <= RTB_REAL_MAX ? fl : RTB_REAL_MAX;
   int k = n;
   while (k > 0 && fabs(r[k - 1]) <= *f_lock) --k;
