@@ -93,7 +93,7 @@ FMI2_EXPORT fmi2Status fmi2SetupExperiment(fmi2Component c, fmi2Boolean toleranc
   if (!in) return fmi2Error;
   if (fmu_require_mode(in, "fmi2SetupExperiment", FMU_MODE_BIT(FMU_INSTANTIATED)) != fmi2OK)
     return fmi2Error;
-  (void)toleranceDefined; /* the stepper's own tolerance (1e-12 relative) applies */
+  (void)toleranceDefined; /* the stepper's own tolerance (RTB_TOL_DEFAULT) applies */
   (void)tolerance;
   if (!isfinite(startTime))
     return fmu_fail(in, fmi2Error, "fmi2SetupExperiment: startTime is not finite");

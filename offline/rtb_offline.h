@@ -95,9 +95,18 @@ struct SimOptions {
                             // time before the record (<= 0: automatic)
   StartMode start = StartMode::automatic;
   double tol = 0.0;         // Newton tolerance of the stepper (rtb_settings.tol);
-                            // 0: the library default, i.e. exactly what a
-                            // controller passing NULL settings runs
+                            // 0: the library default (RTB_TOL_DEFAULT, 1e-8),
+                            // i.e. exactly what a controller passing NULL
+                            // settings runs -- except in fits (below)
 };
+// Newton tolerance of every fit and its sensitivities (misfit, adjoint,
+// tangent sweeps, the diagnosis) when SimOptions::tol is 0. Tighter than the
+// real-time default: the adjoint is the exact derivative of the converged
+// discrete map, and the identification resolves parameters to ~1e-13 only
+// when the forward map is resolved to ~1e-12 (docs/benchmarks.md, session
+// 21). The forces differ from the controller's by ~1e-9 of the peak.
+constexpr double kFitTol = 1e-12;
+inline double fit_tol(const SimOptions &sim) { return sim.tol > 0.0 ? sim.tol : kFitTol; }
 // Force predicted by the stepper for the record's displacement and time grid.
 // Throws std::runtime_error if the stepper reports an error.
 std::vector<double> simulate_force(const rtb_params &p, const Record &rec,

@@ -63,7 +63,7 @@ MisfitValue misfit(const rtb_params &p, const std::vector<Record> &recs,
     const Record &rec = recs[k];
     Part &pt = parts[k];
     const DriveGrid g = make_drive_grid(rec, opt.sim);
-    const Trajectory tr = run_forward(p, g, want_grad, opt.sim.tol);
+    const Trajectory tr = run_forward(p, g, want_grad, fit_tol(opt.sim));
     pt.steps = (long)g.x.size() - 1;
     pt.iters = tr.newton_iterations;
     const std::vector<double> w = quadrature_weights(rec, opt.fit_from);
@@ -125,13 +125,13 @@ void record_sensitivities(const rtb_params &p, const Record &rec, const SimOptio
   const Trajectory *tp = &tl;
   if (cache) {
     SensitivityCache::Entry &e = cache->entry(&rec);
-    const bool hit = e.valid && std::memcmp(&e.p, &p, sizeof p) == 0 && e.tol == sim.tol &&
+    const bool hit = e.valid && std::memcmp(&e.p, &p, sizeof p) == 0 && e.tol == fit_tol(sim) &&
                      e.ramp == sim.ramp_time && e.start == sim.start;
     if (!hit) {
       e.grid = make_drive_grid(rec, sim);
-      e.tr = run_forward(p, e.grid, true, sim.tol);
+      e.tr = run_forward(p, e.grid, true, fit_tol(sim));
       e.p = p;
-      e.tol = sim.tol;
+      e.tol = fit_tol(sim);
       e.ramp = sim.ramp_time;
       e.start = sim.start;
       e.valid = true;
@@ -140,7 +140,7 @@ void record_sensitivities(const rtb_params &p, const Record &rec, const SimOptio
     tp = &e.tr;
   } else {
     gl = make_drive_grid(rec, sim);
-    tl = run_forward(p, gl, jac != nullptr, sim.tol);
+    tl = run_forward(p, gl, jac != nullptr, fit_tol(sim));
   }
   const DriveGrid &g = *gp;
   const Trajectory &tr = *tp;
@@ -205,7 +205,7 @@ void residual_jacobian(const rtb_params &p, const std::vector<Record> &recs,
 double dot_product_test(const rtb_params &p, const Record &rec, const SimOptions &sim,
                         unsigned seed) {
   const DriveGrid g = make_drive_grid(rec, sim);
-  const Trajectory tr = run_forward(p, g, true, sim.tol);
+  const Trajectory tr = run_forward(p, g, true, fit_tol(sim));
   const size_t n = g.x.size();
   const int N = p.cells;
   std::mt19937_64 rng(seed);

@@ -1,6 +1,8 @@
 // synthetic_records.cpp -- see synthetic_records.h.
 #include "synth/synthetic_records.h"
 
+#include "rtb_offline.h"
+
 #include <algorithm>
 #include <cmath>
 #include <random>
@@ -51,6 +53,9 @@ Record synthesize(const InputSpec &in, const TruthSpec &truth, const std::string
   const double h = in.dt / os;
   rtb_state s;
   if (rtb_state_init(&s, &truth.p, 0.0) != RTB_OK) throw std::runtime_error("synthesize: bad params");
+  rtb_settings set;  // the truth at the fits' tolerance: with oversample 1, the fitted discrete map
+  rtb_settings_default(&set);
+  set.tol = kFitTol;
   s.vx = (input_at(in, h) - input_at(in, 0.0)) / h;  // the input is already moving at t = 0
   std::vector<double> tf{0.0}, Ff{s.force};
   const size_t n = rec.t.size();
@@ -58,7 +63,7 @@ Record synthesize(const InputSpec &in, const TruthSpec &truth, const std::string
     for (int k = 1; k <= os; ++k) {
       const double t = rec.t[i - 1] + k * h;
       double F;
-      if (rtb_step(&s, &truth.p, nullptr, input_at(in, t), h, &F) < 0)
+      if (rtb_step(&s, &truth.p, &set, input_at(in, t), h, &F) < 0)
         throw std::runtime_error("synthesize: stepper error");
       tf.push_back(t);
       Ff.push_back(F);
