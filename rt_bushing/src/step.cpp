@@ -439,11 +439,9 @@ extern "C" rtb_status rtb_step_ex(rtb_state *s, const rtb_params *p, const rtb_s
                                   rtb_real x, rtb_real dt, rtb_real *force,
                                   rtb_step_info *info) {
   if (!force) return RTB_ERR_NULL;
-  rtb_state next;
-  rtb_status st = rtb_step_core(s, p, set, x, dt, &next, force, NULL, NULL, info,
-                                RTB_BACKLASH_ITERS);
-  if (st >= 0) *s = next;
-  return st;
+  /* In place: rtb_step_core writes its output only after every check, and
+   * reads nothing of *s after its first write (no 1 KB state copied twice). */
+  return rtb_step_core(s, p, set, x, dt, s, force, NULL, NULL, info, RTB_BACKLASH_ITERS);
 }
 
 extern "C" rtb_status rtb_step(rtb_state *s, const rtb_params *p, const rtb_settings *set,
