@@ -35,10 +35,16 @@ typedef struct rtb_stage {
  * on the dashpot curve (previous solution); D0 (may be NULL: computed from
  * the pair) its slopes phi'(f0); v_guess (may be NULL) the fallback start.
  * *budget: law evaluations left in this step, decremented
- * (stage_newton.cpp). Returns RTB_OK, RTB_NOT_CONVERGED or RTB_ERR_OVERFLOW. */
+ * (stage_newton.cpp). lu (may be NULL; newton_step.h): on entry, if lu->n is
+ * the stage's active cell count and the free start is taken, the
+ * factorization of a nearby Newton matrix of the same h (SDIRK2's first
+ * stage's last, for the second stage), taken for the first Newton step; on
+ * return the stage's last factorization (lu->n = 0: none). Returns RTB_OK,
+ * RTB_NOT_CONVERGED or RTB_ERR_OVERFLOW. */
+struct rtb_newton_lu;
 rtb_status rtb_stage_solve(const rtb_params *p, const rtb_settings *set, const rtb_real *f0,
                            const rtb_real *v0, const rtb_real *D0, const rtb_real *v_guess,
-                           rtb_stage *st, int *budget);
+                           rtb_stage *st, int *budget, struct rtb_newton_lu *lu);
 
 /* Work units of one dashpot-law evaluation in the step budget
  * (RTB_STEP_WORK): 1 for eq. (1), RTB_SLAW_UNIT for the smoothed eq. (14)

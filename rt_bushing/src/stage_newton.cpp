@@ -309,13 +309,17 @@ bool start_iterate(const Chain &ch, const rtb_real *f0, const rtb_real *v0, cons
 /* Newton's iteration on the active cells from *x (bufs: *x and the trial
  * buffer), until converged or out of the stage's iterations (set->max_iter
  * over all its calls) or budget. Adds its iterations and backtracks to st,
- * sets st->converged; returns the convergence scale. */
+ * sets st->converged; returns the convergence scale. lu: the factorization
+ * storage; when lu.n == ch.n on entry (`reuse`), the first step takes it as
+ * it is (rtb_stage_solve); on return it holds the last factorization (n = 0
+ * after a failed one). */
 rtb_real newton_iterate(const Chain &ch, const rtb_settings *set, const rtb_real *r,
                         rtb_real rnorm, const rtb_real *v_guess, bool free_start,
-                        Iterate bufs[2], Iterate **xp, rtb_stage *st, int *budget) {
+                        Iterate bufs[2], Iterate **xp, rtb_stage *st, int *budget,
+                        rtb_newton_lu &lu, bool reuse) {
   const int n = ch.n;
   rtb_real dl[RTB_MAX_CELLS], dc[RTB_MAX_CELLS], Q[RTB_MAX_CELLS];
-  rtb_newton_lu lu;
+  bool have_lu = reuse && lu.n == n;
   Iterate *x = *xp, *trial = x == &bufs[0] ? &bufs[1] : &bufs[0];
   st->converged = 0;
   int it = 0;
@@ -325,7 +329,11 @@ rtb_real newton_iterate(const Chain &ch, const rtb_settings *set, const rtb_real
     scale = x->fmax_abs > rnorm ? x->fmax_abs : rnorm;
     if (x->hnorm <= set->tol * scale || x->hnorm <= RTB_REAL_MIN) { st->converged = 1; break; }
     if (st->iterations + it >= set->max_iter || *budget < ch.sweep) break;
-    if (rtb_newton_factor(n, ch.hK0, ch.hKr, x->D, &lu) != 0) break;
+    if (!have_lu && rtb_newton_factor(n, ch.hK0, ch.hKr, x->D, &lu) != 0) {
+      lu.n = 0;
+      break;
+    }
+    have_lu = false;
     rtb_newton_substitute(&lu, -1.0, x->H, dl);
 
     /* Last step without a law sweep: when the linearised update (f + dl,
@@ -437,7 +445,11 @@ inline rtb_real locked_force(const Chain &ch, const rtb_real *r, const Iterate &
 
 extern "C" rtb_status rtb_stage_solve(const rtb_params *p, const rtb_settings *set,
                                       const rtb_real *f0, const rtb_real *v0, const rtb_real *D0,
-                                      const rtb_real *v_guess, rtb_stage *st, int *budget) {
+                                      const rtb_real *v_guess, rtb_stage *st, int *budget,
+                                      rtb_newton_lu *lu_io) {
+  rtb_newton_lu own;
+  own.n = 0;
+  rtb_newton_lu *lu = lu_io ? lu_io : &own;
   Chain ch;
   ch.n = p->cells;
   ch.Kpa = p->Kpa;
@@ -475,7 +487,7 @@ extern "C" rtb_status rtb_stage_solve(const rtb_params *p, const rtb_settings *s
    * log2(N) re-solves rather than N. */
   for (int unlock = 1; ch.n > 0; unlock *= 2) {
     scale = newton_iterate(ch, set, r, rnorm, v_guess, free_start && unlock == 1, bufs, &x, st,
-                           budget);
+                           budget, *lu, free_start && unlock == 1);
     if (ch.n == n || !st->converged) break;
     const rtb_real f_next = locked_force(ch, r, *x, ch.n);
     if (fabs(f_next) <= f_lock) break;
