@@ -35,7 +35,7 @@ typedef struct rtb_stage {
  * on the dashpot curve (previous solution); D0 (may be NULL: computed from
  * the pair) its slopes phi'(f0); v_guess (may be NULL) the fallback start.
  * *budget: law evaluations left in this step, decremented
- * (stage_newton.cpp). lu (may be NULL; newton_step.h): on entry, if lu->n is
+ * (stage_newton.cpp). lu (not NULL; newton_step.h): on entry, if lu->n is
  * the stage's active cell count and the free start is taken, the
  * factorization of a nearby Newton matrix of the same h (SDIRK2's first
  * stage's last, for the second stage), taken for the first Newton step; on

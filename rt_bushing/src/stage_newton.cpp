@@ -446,10 +446,7 @@ inline rtb_real locked_force(const Chain &ch, const rtb_real *r, const Iterate &
 extern "C" rtb_status rtb_stage_solve(const rtb_params *p, const rtb_settings *set,
                                       const rtb_real *f0, const rtb_real *v0, const rtb_real *D0,
                                       const rtb_real *v_guess, rtb_stage *st, int *budget,
-                                      rtb_newton_lu *lu_io) {
-  rtb_newton_lu own;
-  own.n = 0;
-  rtb_newton_lu *lu = lu_io ? lu_io : &own;
+                                      rtb_newton_lu *lu) {
   Chain ch;
   ch.n = p->cells;
   ch.Kpa = p->Kpa;

@@ -50,21 +50,21 @@ extern "C" rtb_status rtb_chain_advance_from(const rtb_params *p, const rtb_sett
   const rtb_real w = s->dt_prev > 0.0 ? fmin(lead / s->dt_prev, 1.0) : 0.0;
   for (int k = 0; k < n; ++k) guess[k] = s->v[k] + w * (s->v[k] - s->v_prev[k]);
   const rtb_real *fs = f1 && v1 ? f1 : f_end, *vs = f1 && v1 ? v1 : s->v;
+  /* Both SDIRK2 stages have the step h = g dt: the second's first Newton
+   * step takes the first stage's last factorization (its matrix differs by
+   * the slopes' change over that last update, ~1e-4 relative at 1 kHz). */
+  rtb_newton_lu lu;
+  lu.n = 0;
   if (ns == 1) {
     st[0].h = dt;
     st[0].b1 = p->Kpa * xb_new;
     memcpy(st[0].c, s->y, sizeof(rtb_real) * n);
-    return rtb_stage_solve(p, set, fs, vs, NULL, guess, &st[0], budget, NULL);
+    return rtb_stage_solve(p, set, fs, vs, NULL, guess, &st[0], budget, &lu);
   }
   const rtb_real g = RTB_SDIRK_GAMMA;
   st[0].h = g * dt;
   st[0].b1 = p->Kpa * (s->xb + g * (xb_new - s->xb));
   memcpy(st[0].c, s->y, sizeof(rtb_real) * n);
-  /* Both stages have the step h = g dt: the second's first Newton step takes
-   * the first stage's last factorization (its matrix differs by the slopes'
-   * change over that last update, ~1e-4 relative at 1 kHz). */
-  rtb_newton_lu lu;
-  lu.n = 0;
   rtb_status a = rtb_stage_solve(p, set, fs, vs, NULL, guess, &st[0], budget, &lu);
   if (a < 0) return a;
   if (!st[0].converged) lu.n = 0;
