@@ -241,8 +241,9 @@ typedef struct rtb_params {
  * most three sweeps (the pair from the last step, the law at the predicted
  * velocity, rest). rtb_step_info.work reports what a step spent. When the
  * budget runs out the step commits its best iterate and returns
- * RTB_NOT_CONVERGED. A 1 kHz step at N = 15 uses 4 to 5 sweeps
- * (~70 units); with every extension, smoothing and a clearance ~1000-2000.
+ * RTB_NOT_CONVERGED. A 1 kHz step at N = 15 uses about two sweeps of its
+ * moving cells (~26 units at the default tolerance); with every extension,
+ * smoothing and a clearance ~1000-2000.
  * A unit costs ~26 ns on the benchmark machine (a 2-vCPU AMD EPYC guest),
  * so the default bounds a step at ~110 us; a host that needs a tighter bound
  * sets max_work (per call, so per element; or builds with -DRTB_STEP_WORK=W
