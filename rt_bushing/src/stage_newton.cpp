@@ -310,16 +310,16 @@ bool start_iterate(const Chain &ch, const rtb_real *f0, const rtb_real *v0, cons
  * buffer), until converged or out of the stage's iterations (set->max_iter
  * over all its calls) or budget. Adds its iterations and backtracks to st,
  * sets st->converged; returns the convergence scale. lu: the factorization
- * storage; when lu.n == ch.n on entry (`reuse`), the first step takes it as
- * it is (rtb_stage_solve); on return it holds the last factorization (n = 0
- * after a failed one). */
+ * storage; from a free start with lu.n == ch.n on entry, the first step
+ * takes it as it is (rtb_stage_solve); on return it holds the last
+ * factorization (n = 0 after a failed one). */
 rtb_real newton_iterate(const Chain &ch, const rtb_settings *set, const rtb_real *r,
                         rtb_real rnorm, const rtb_real *v_guess, bool free_start,
                         Iterate bufs[2], Iterate **xp, rtb_stage *st, int *budget,
-                        rtb_newton_lu &lu, bool reuse) {
+                        rtb_newton_lu &lu) {
   const int n = ch.n;
   rtb_real dl[RTB_MAX_CELLS], dc[RTB_MAX_CELLS], Q[RTB_MAX_CELLS];
-  bool have_lu = reuse && lu.n == n;
+  bool have_lu = free_start && lu.n == n;
   Iterate *x = *xp, *trial = x == &bufs[0] ? &bufs[1] : &bufs[0];
   st->converged = 0;
   int it = 0;
@@ -484,7 +484,7 @@ extern "C" rtb_status rtb_stage_solve(const rtb_params *p, const rtb_settings *s
    * log2(N) re-solves rather than N. */
   for (int unlock = 1; ch.n > 0; unlock *= 2) {
     scale = newton_iterate(ch, set, r, rnorm, v_guess, free_start && unlock == 1, bufs, &x, st,
-                           budget, *lu, free_start && unlock == 1);
+                           budget, *lu);
     if (ch.n == n || !st->converged) break;
     const rtb_real f_next = locked_force(ch, r, *x, ch.n);
     if (fabs(f_next) <= f_lock) break;
