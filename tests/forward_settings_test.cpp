@@ -14,7 +14,7 @@
 namespace {
 
 TEST(ForwardModel, RunsTheControllersDefaultSettingsBitForBit) {
-  // Near-friction dashpots and a 38 mm jump in 10 us: the first step needs
+  // Near-friction dashpots and a 77 mm jump in 10 us: the first step needs
   // more than the default 40 Newton iterations per stage.
   const rtb_params p = rtb_test::hard_jump_params();
   rtb::Record rec;
