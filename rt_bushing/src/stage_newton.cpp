@@ -233,26 +233,16 @@ bool sweep_free_chebyshev(const Chain &ch, const Iterate &x, const rtb_real *dc,
   return true;
 }
 
-/* A trial that repairs a Newton step which blew up (cell_row_solve.h):
- * one Gauss-Seidel pass along the chain, each cell's own row of H = 0 solved
- * with its neighbours' velocities held (the updated one before it, the
- * current one after it). Every force lands near its dashpot's level however
- * far r is past it, so the pass does in one sweep-equivalent per
- * evaluation what halving t does in a dozen sweeps per iteration. Takes its
- * evaluations from *budget (the caller checks it holds RTB_ROW_SOLVE_EVALS
- * sweeps); returns whether the trial's residual is finite. */
+/* A trial that repairs a Newton step which blew up: one Gauss-Seidel pass
+ * of exact per-cell row solves (cell_row_solve.cpp), its evaluations taken
+ * from *budget (the caller checks it holds RTB_ROW_SOLVE_EVALS sweeps);
+ * returns whether the trial's residual is finite. */
 bool gauss_seidel_trial(const Chain &ch, const Iterate &x, const rtb_real *r, Iterate *t,
                         int *budget) {
   const int n = ch.n;
-  for (int k = 0; k < n; ++k) t->v[k] = x.v[k];
+  *budget -= ch.unit * rtb_cell_gauss_seidel(&ch.law, n, ch.hK0, ch.hKr, r, x.v, t->f, t->v, t->D);
   t->fmax_abs = 0.0;
   for (int k = 0; k < n; ++k) {
-    const rtb_real a = k == 0 ? ch.hK0 : 2.0 * ch.hKr;
-    const rtb_real b =
-        r[k] + ch.hKr * ((k > 0 ? t->v[k - 1] : 0.0) + (k + 1 < n ? t->v[k + 1] : 0.0));
-    int evals;
-    t->v[k] = rtb_cell_row_solve(&ch.law, a, b, RTB_ROW_SOLVE_EVALS, &t->f[k], &t->D[k], &evals);
-    *budget -= evals * ch.unit;
     t->steep[k] = steep_at(ch, k, t->D[k]);
     t->fmax_abs = fabs(t->f[k]) > t->fmax_abs ? fabs(t->f[k]) : t->fmax_abs;
   }
