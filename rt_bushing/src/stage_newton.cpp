@@ -44,9 +44,10 @@
  * Gauss-Seidel pass that solves each cell's own row exactly
  * (cell_row_solve.h). On BM_RandomConfigs' 90 000 steps this takes the
  * unconverged share at the default budget from 3.77% to 1.53% and the mean
- * work from 294 to 203 units (at 640 units: 21.4% to 16.6%); near-friction elements driven by large jumps
- * that never converged now do (tests/cell_row_solve_test.cpp). Steps whose
- * full step does not blow up are unchanged, bit for bit.
+ * work from 294 to 203 units (at 640 units: 21.4% to 16.6%); near-friction
+ * elements driven by large jumps that never converged now do
+ * (tests/cell_row_solve_test.cpp). Steps whose full step does not blow up
+ * are unchanged, bit for bit.
  *
  * Stuck cells (session 18): a cell whose dashpot force keeps its velocity
  * too small to move the residual by a thousandth of the tolerance is held at
@@ -338,9 +339,9 @@ bool start_iterate(const Chain &ch, const rtb_real *f0, const rtb_real *v0, cons
 /* A trial residual this many times the current one is a blow-up, not a
  * poor step: the Gauss-Seidel repair is tried. Thresholds 1e3 and 1e6 leave
  * 1.73% and 1.40% of BM_RandomConfigs' steps unconverged (without the gain
- * rule below); at 1e3 the repair
- * also replaces halvings that would have done better on well-behaved
- * elements (alpha >= 0.1: 0.12% against 0.04% unconverged). */
+ * rule below); at 1e3 the repair also replaces halvings that would have
+ * done better on well-behaved elements (alpha >= 0.1: 0.12% against 0.04%
+ * unconverged). */
 #define RTB_BLOWUP 1e6
 /* A repair is taken only if it lowers |H|_2^2 below this fraction of the
  * current (|H|_2 by 5%); otherwise the line search halves Newton's step as
