@@ -182,18 +182,18 @@ TEST(IndependentDiagnose, CreepingForceZeroIsUnexplained) {
   EXPECT_FALSE(d.R.withdrawn.empty()) << d.R.verdict;
 }
 
-// Two effects that pay only together (stage 5e): on seed 12 the asymmetry
-// alone gains 13% held out (a first cause needs 15%) and the delay's
-// cross-correlation, run against a baseline without the asymmetry, finds the
-// force leading; without the pair stage the verdict was `unexplained` at 12x
-// the floor. Both are named, at their true sizes, and the model reaches the
-// floor.
-TEST(IndependentDiagnose, DelayAndAsymmetryThatPayOnlyTogetherAreAPair) {
+// Delay and asymmetry together (seed 12). Until session 23 they paid only
+// together (stage 5e, cause_pair.cpp): the asymmetry alone gains 13% held
+// out (a first cause needs 15%) and the delay's cross-correlation, averaged
+// per sample over the records, found the force leading. Pooled by each
+// record's information on a shift (plausibility.cpp) it lags 2.1 ms against
+// a fitted 2.65, and the delay is a first cause on its own, the asymmetry a
+// second. Either route must name both, at their true sizes, at the floor.
+TEST(IndependentDiagnose, DelayAndAsymmetryAreBothNamed) {
   RTB_SKIP_UNDER_SANITIZERS();
   const Diagnosed d = diagnose_refgen(std::vector<std::string>{"delay", "asymmetry"}, 12);
   const refgen::Scenario sc = refgen::make_scenario({"delay", "asymmetry"}, 12, kDuration);
   ASSERT_EQ(d.R.causes.size(), 2u) << d.R.verdict;
-  EXPECT_TRUE(d.R.causes[0].paired && d.R.causes[1].paired) << d.R.verdict;
   std::vector<std::string> names = {d.R.causes[0].cand.name, d.R.causes[1].cand.name};
   std::sort(names.begin(), names.end());
   EXPECT_EQ(names, (std::vector<std::string>{"asymmetry", "delay"})) << d.R.verdict;

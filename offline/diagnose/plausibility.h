@@ -7,8 +7,10 @@
 // * offset: where a record is at rest at x ~ 0 before it moves, the measured
 //   force is the sensor's zero; the fitted offset must agree with it.
 // * delay: the measured force must lag the current model's prediction by
-//   about the fitted delay (their cross-correlation peak). Not a lead (the
-//   displacement channel lagging): RT's dashpots imitate one.
+//   about the fitted delay (the least-squares shift over all records, each
+//   counting by its information on a shift), and the residual must be shaped
+//   like a shift (the cross-correlation's peak near that shift). Not a lead
+//   (the displacement channel lagging): RT's dashpots imitate one.
 // * slack: where the fitted model floats free (zero force), the measured
 //   force must be near zero too, on a visible share of the samples.
 // * softening: the fitted static elastic law must soften (its tangent drop by
