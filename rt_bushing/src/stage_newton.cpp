@@ -117,13 +117,24 @@ rtb_real residual(const Chain &ch, const rtb_real *f, const rtb_real *v, const r
   return nrm;
 }
 
+/* The update choice of cells lo .. hi-1 at their slopes D (steep_at), and
+ * max(m, max |f|) over them: what every new iterate needs. */
+rtb_real mark_cells(const Chain &ch, int lo, int hi, const rtb_real *f, const rtb_real *D,
+                    bool *steep, rtb_real m) {
+  for (int k = lo; k < hi; ++k) {
+    steep[k] = steep_at(ch, k, D[k]);
+    const rtb_real a = fabs(f[k]);
+    m = a > m ? a : m;
+  }
+  return m;
+}
+
 /* Evaluate the law at v (steep DOFs) or f (the others) for all cells; D =
  * dv/df at the new pair, and the next iteration's choice of update variable
  * (steep: h K_kk D > 1). Takes the evaluations from *budget; returns max |f|. */
 rtb_real law_sweep(const Chain &ch, bool *steep, rtb_real *f, rtb_real *v, rtb_real *D,
                    int *budget) {
   const int n = ch.n;
-  rtb_real fmax_abs = 0.0;
   if (!(ch.law.s > 0.0)) { /* eq. (1): one power per cell, all cells at once */
     rtb_law_sweep_lanes(&ch.law, n, steep, f, v, D);
     *budget -= n;
@@ -141,12 +152,7 @@ rtb_real law_sweep(const Chain &ch, bool *steep, rtb_real *f, rtb_real *v, rtb_r
       }
     }
   }
-  for (int k = 0; k < n; ++k) {
-    steep[k] = steep_at(ch, k, D[k]);
-    const rtb_real a = fabs(f[k]);
-    fmax_abs = a > fmax_abs ? a : fmax_abs;
-  }
-  return fmax_abs;
+  return mark_cells(ch, 0, n, f, D, steep, 0.0);
 }
 
 /* Pair (f, v), slopes D, residual H and the update choice of one iterate. */
@@ -242,11 +248,7 @@ bool gauss_seidel_trial(const Chain &ch, const Iterate &x, const rtb_real *r, It
                         int *budget) {
   const int n = ch.n;
   *budget -= ch.unit * rtb_cell_gauss_seidel(&ch.law, n, ch.hK0, ch.hKr, r, x.v, t->f, t->v, t->D);
-  t->fmax_abs = 0.0;
-  for (int k = 0; k < n; ++k) {
-    t->steep[k] = steep_at(ch, k, t->D[k]);
-    t->fmax_abs = fabs(t->f[k]) > t->fmax_abs ? fabs(t->f[k]) : t->fmax_abs;
-  }
+  t->fmax_abs = mark_cells(ch, 0, n, t->f, t->D, t->steep, 0.0);
   t->hnorm = residual(ch, t->f, t->v, r, t->H, &t->h2);
   return t->hnorm <= RTB_REAL_MAX;
 }
@@ -314,16 +316,14 @@ bool start_iterate(const Chain &ch, const rtb_real *f0, const rtb_real *v0, cons
   const int n = ch.n;
   bool free_start = f0 && v0;
   if (free_start) {
-    x->fmax_abs = 0.0;
     for (int k = 0; k < n; ++k) {
       int evals = 0;
       x->f[k] = f0[k];
       x->v[k] = v0[k];
       x->D[k] = D0 ? D0[k] : rtb_law_dvdf_pair(&ch.law, f0[k], v0[k], &evals);
       *budget -= evals * ch.unit;
-      x->steep[k] = steep_at(ch, k, x->D[k]);
-      x->fmax_abs = fabs(f0[k]) > x->fmax_abs ? fabs(f0[k]) : x->fmax_abs;
     }
+    x->fmax_abs = mark_cells(ch, 0, n, x->f, x->D, x->steep, 0.0);
     x->hnorm = residual(ch, x->f, x->v, r, x->H, &x->h2);
     free_start = x->hnorm <= RTB_REAL_MAX;
   }
@@ -435,23 +435,19 @@ rtb_real newton_iterate(const Chain &ch, const rtb_settings *set, const rtb_real
       }
       trial->fmax_abs = law_sweep(ch, trial->steep, trial->f, trial->v, trial->D, budget);
       trial->hnorm = residual(ch, trial->f, trial->v, r, trial->H, &trial->h2);
-      if (!(trial->hnorm <= RTB_REAL_MAX) || trial->h2 > (1.0 - 2e-4 * t) * x->h2) {
+      const bool descent = trial->hnorm <= RTB_REAL_MAX && !(trial->h2 > (1.0 - 2e-4 * t) * x->h2);
+      if (!descent) {
         ++st->backtracks;
         /* Newton's full step blew up (overflow, or a residual a million
          * times the current): repair every row instead of halving. */
-        if (bt == 0 && !(trial->hnorm <= RTB_BLOWUP * x->hnorm) &&
-            *budget >= RTB_ROW_SOLVE_EVALS * ch.sweep &&
-            gauss_seidel_trial(ch, *x, r, trial, budget) && trial->h2 < RTB_REPAIR_GAIN * x->h2) {
-          prev_hnorm = 0.0; /* not a full Newton step */
-          Iterate *tmp = x;
-          x = trial;
-          trial = tmp;
-          accepted = true;
-          break;
-        }
-        continue;
+        const bool repaired = bt == 0 && !(trial->hnorm <= RTB_BLOWUP * x->hnorm) &&
+                              *budget >= RTB_ROW_SOLVE_EVALS * ch.sweep &&
+                              gauss_seidel_trial(ch, *x, r, trial, budget) &&
+                              trial->h2 < RTB_REPAIR_GAIN * x->h2;
+        if (!repaired) continue;
       }
-      prev_hnorm = t == 1.0 ? x->hnorm : 0.0;
+      /* linearised_residual's reference: |H| before a full step only */
+      prev_hnorm = descent && t == 1.0 ? x->hnorm : 0.0;
       Iterate *tmp = x;
       x = trial;
       trial = tmp;
@@ -487,9 +483,8 @@ void unlock_cells(Chain *ch, int count, rtb_real f, rtb_real f_lock, const rtb_r
   for (int k = first; k < ch->n; ++k) {
     x->f[k] = k > first ? r[k] : (f < 0.0 ? -f_lock : f_lock);
     x->v[k] = rtb_law_eval_pow_f(&ch->law, x->f[k], &x->D[k]);
-    x->steep[k] = steep_at(*ch, k, x->D[k]);
-    x->fmax_abs = fabs(x->f[k]) > x->fmax_abs ? fabs(x->f[k]) : x->fmax_abs;
   }
+  x->fmax_abs = mark_cells(*ch, first, ch->n, x->f, x->D, x->steep, x->fmax_abs);
   *budget -= count * ch->unit;
   x->hnorm = residual(*ch, x->f, x->v, r, x->H, &x->h2);
 }
