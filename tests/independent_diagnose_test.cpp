@@ -85,6 +85,31 @@ TEST(IndependentDiagnose, PlainRtIsNone) {
   EXPECT_EQ(d.R.cause, "none") << d.R.verdict;
 }
 
+// A Maxwell branch the baseline absorbed (seed 16: K0 = 0, a chain 14
+// times too stiff): the screen starts the branch at 4 s and the joint fit
+// drifts past the records' 4 s, where a branch is a spring (seed 16: 8.1 s,
+// 3.03% held out, `unexplained`; seed 18: 4.26 s, 2.43%). The restart from
+// the middle of the resolvable times, at the stiffness the screen measured
+// (cause_round.cpp), finds the generator's branch; seed 18 also fails when
+// the restart starts from the scan's zero stiffness.
+class AbsorbedMaxwell : public ::testing::TestWithParam<unsigned> {};
+
+TEST_P(AbsorbedMaxwell, IsFoundAtTheGeneratorsTime) {
+  RTB_SKIP_UNDER_SANITIZERS();
+  const unsigned seed = GetParam();
+  const Diagnosed d = diagnose_refgen("maxwell", seed);
+  const refgen::Scenario sc = refgen::make_scenario({"maxwell"}, seed, kDuration);
+  ASSERT_FALSE(d.R.causes.empty()) << d.R.verdict;
+  EXPECT_EQ(d.R.causes[0].cand.name, "maxwell") << d.R.verdict;
+  ASSERT_EQ(sc.specimen.branches.size(), 1u);
+  const refgen::Branch &b = sc.specimen.branches[0];
+  EXPECT_NEAR(d.R.extended.p.maxwell_tau, b.tau, 0.1 * b.tau) << d.R.verdict;
+  EXPECT_NEAR(d.R.extended.p.maxwell_k, b.k, 0.1 * b.k) << d.R.verdict;
+  EXPECT_LT(d.R.extended_error_holdout, 1.3 * d.noise_floor) << d.R.verdict;
+}
+
+INSTANTIATE_TEST_SUITE_P(IndependentDiagnose, AbsorbedMaxwell, ::testing::Values(16u, 18u));
+
 // Plain RT oscillating about a held preload (0.5-1.5 amplitudes): the
 // element must start relaxed there, or the start transient reads as an
 // offset (session 13's binary named `offset` on 4 of seeds 1-6).
