@@ -87,17 +87,18 @@ double amplitude_z(const Candidate &c, const ExtFitResult &f) {
 // duration) and the lower misfit kept.
 void middle_branch_start(CandidateOutcome &co, const std::vector<Candidate> &with,
                          const Context &cx) {
+  const double tau_mid = std::sqrt(5.0 * cx.sc.dt * cx.sc.duration);
+  if (co.cand.name != "maxwell" || !(co.fit.model.p.maxwell_tau > cx.sc.duration) ||
+      !(tau_mid < co.screen.start.p.maxwell_tau))
+    return;
   ExtModel mid = co.screen.start;
-  mid.p.maxwell_tau = std::sqrt(5.0 * cx.sc.dt * cx.sc.duration);
+  mid.p.maxwell_tau = tau_mid;
   // The scan leaves the branch's stiffness at 0 (the joint fit sizes it);
   // at 0 its time has no gradient, so the restart starts at the stiffness
   // the screen measured (refgen maxwell_s18: from k = 0 the fit stays at
-  // 0.14 s with k = 0, J 7090; from the screen's 163 N/mm identify reaches
-  // the generator's 0.072 s).
+  // 0.14 s with k = 0, J 7090; from the screen's 163 N/mm it reaches the
+  // generator's 0.072 s).
   if (co.screen.value > 0.0) mid.p.maxwell_k = co.screen.value;
-  if (co.cand.name != "maxwell" || !(co.fit.model.p.maxwell_tau > cx.sc.duration) ||
-      !(mid.p.maxwell_tau < co.screen.start.p.maxwell_tau))
-    return;
   const ExtFitResult again = fit_extended(cx.fit, mid, combined_spec(with, cx.sc), cx.opt.misfit);
   if (!cx.opt.quiet)
     std::fprintf(stderr, "diagnose: maxwell from tau %.4g s: tau %.4g s, J %.6g; from %.4g s: tau %.4g s, J %.6g (%d iterations)\n",
