@@ -228,7 +228,7 @@ bool prefer_other_definition(std::vector<Candidate> &causes, size_t i, const Con
   } catch (const std::exception &) {
     return false;  // the fit stands
   }
-  if (!(f.J < fit.J)) return false;
+  if (!definition_preferred(f, fit, cx)) return false;
   causes = with;
   fit = f;
   return true;
@@ -246,8 +246,8 @@ void revisit_definitions(Current &cur, const Context &cx, DiagnoseResult &R) {
     ExtFitResult fit = R.extended_fit;
     if (!prefer_other_definition(causes, i, cx, fit)) continue;
     if (!cx.opt.quiet)
-      std::fprintf(stderr, "diagnose: with %s, %s fits better in its other definition (fit %.3f%% -> "
-                   "%.3f%%)\n", cur.causes.back().name.c_str(), causes[i].name.c_str(),
+      std::fprintf(stderr, "diagnose: with %s, the records prefer %s in its other definition (fit "
+                   "%.3f%% -> %.3f%%)\n", cur.causes.back().name.c_str(), causes[i].name.c_str(),
                    100 * R.extended_fit.error, 100 * fit.error);
     cur = make_current(fit.model, combined_spec(causes, cx.sc), causes, cx);
     R.causes[i].cand = causes[i];
