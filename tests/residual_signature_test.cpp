@@ -68,6 +68,43 @@ TEST(ResidualSignature, AZeroDriftIsATrendWhereTheInputMoves) {
   EXPECT_GT(signature(recs).trend_share, 0.5);
 }
 
+// A short fast record beside slow ones: a 0.2 mm, 30 Hz sine of 1 s next
+// to the 4 s records above, with a residual line at 30 Hz only there (what
+// an underestimated mass leaves). Pooled over the records, the
+// displacement's energy at 30 Hz is under 1%; where the line is, it is
+// all of it: the line is no force-channel disturbance.
+TEST(ResidualSignature, ALineWhereAFastRecordMovesHasInputContent) {
+  std::vector<Record> recs = sine_and_hold();
+  Record fast;
+  fast.path = "fast";
+  for (int k = 0; k <= 1000; ++k) {
+    fast.t.push_back(1e-3 * k);
+    fast.x.push_back(0.2 * std::sin(2.0 * M_PI * 30.0 * 1e-3 * k));
+  }
+  fast.F.assign(fast.t.size(), 0.0);
+  std::vector<Record> one = {fast};
+  rtb_test::measure_through(rtb_test::paper_model(), one);
+  recs.push_back(one[0]);
+  recs = with_residual(recs, [](size_t r, double t) {
+    return r == 2 ? 30.0 * std::sin(2.0 * M_PI * 30.0 * t) : 0.0;
+  });
+  const ResidualSignature sig = signature(recs);
+  EXPECT_NEAR(sig.dominant_hz, 30.0, 0.3);
+  EXPECT_GT(sig.input_share, 0.9);
+  EXPECT_EQ(sig.text.find("no content"), std::string::npos) << sig.text;
+}
+
+// A 50 Hz hum on every record's force: the displacement has nothing there.
+TEST(ResidualSignature, AHumOnEveryRecordHasNoInputContent) {
+  const auto recs = with_residual(sine_and_hold(), [](size_t, double t) {
+    return 5.0 * std::sin(2.0 * M_PI * 50.0 * t);
+  });
+  const ResidualSignature sig = signature(recs);
+  EXPECT_NEAR(sig.dominant_hz, 50.0, 0.5);
+  EXPECT_LT(sig.input_share, 0.01);
+  EXPECT_NE(sig.text.find("no content"), std::string::npos) << sig.text;
+}
+
 }  // namespace
 }  // namespace rtb
 #endif

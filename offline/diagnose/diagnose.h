@@ -219,7 +219,8 @@ struct RecordFigures {
 struct ResidualSignature {
   double dominant_hz = 0.0;      // frequency of the residual's largest spectral line
   double dominant_share = 0.0;   // share of the residual's energy within +-10% of it
-  double input_share = 0.0;      // share of the displacement's energy there
+  double input_share = 0.0;      // share of the displacement's energy there, in the records
+                                 // carrying the line (weighted by their part of it)
   double trend_share = 0.0;      // share explained by a + b t (slow drift of the force)
   double drift_share = 0.0;      // share explained by t F_model (a stiffness drift)
   std::string where;             // the loop quadrant or phase where it is largest
