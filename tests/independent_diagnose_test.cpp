@@ -207,6 +207,7 @@ TEST(IndependentDiagnose, CreepingForceZeroIsUnexplained) {
   expect_unexplained_naming(d, "trend");
   EXPECT_FALSE(d.R.withdrawn.empty()) << d.R.verdict;
 }
+
 // A delay whose two definitions only the held-out records tell apart (seed
 // 17: 500 Hz, slow fit records, a 30 Hz held-out sine). On the fit records
 // the low-pass fits 10% better than the generator's pure lag (J 462

@@ -103,13 +103,13 @@ int drop_redundant(Current &cur, const Context &cx, DiagnoseResult &R);
 int spectrum_to_one_branch(Current &cur, const Context &cx, DiagnoseResult &R);
 // The share of a relaxation spectrum's stiffness on its fastest branch.
 double fastest_branch_share(const rtb_params &p);
-// Cause i of `causes`, fitted as `fit`, refitted in its other definition
-// (other_definition, candidates.h) with the rest; true, and causes[i] and
-// fit replaced, when the records prefer it (definition_preferred).
 // Whether fit b of one definition of a word is preferred to fit a of the
 // other: the held-out records decide when one gains min_gain on the other
 // there, the fit misfit J otherwise.
 bool definition_preferred(const ExtFitResult &b, const ExtFitResult &a, const Context &cx);
+// Cause i of `causes`, fitted as `fit`, refitted in its other definition
+// (other_definition, candidates.h) with the rest; true, and causes[i] and
+// fit replaced, when the records prefer it (definition_preferred).
 bool prefer_other_definition(std::vector<Candidate> &causes, size_t i, const Context &cx,
                              ExtFitResult &fit);
 // Stage 5d: each earlier cause's other definition, refitted with the later
