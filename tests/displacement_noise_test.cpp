@@ -37,10 +37,15 @@ TEST(DisplacementDenoise, CutOffFollowsTheRecordsBandwidth) {
   const DisplacementDenoise a = denoise_displacement(slow);
   EXPECT_GE(a.cutoff_hz, 10.0);
   EXPECT_LE(a.cutoff_hz, 50.0);
-  // Adding a 70 Hz record widens the band for all records.
+  // A 70 Hz record beside it gets its own wider band; the 5 Hz record
+  // keeps its own, not the 70 Hz one's acceleration noise.
   std::vector<Record> both = {noisy_sine(5.0, 0.005, 1), noisy_sine(70.0, 0.005, 2)};
   const DisplacementDenoise b = denoise_displacement(both);
   EXPECT_GE(b.cutoff_hz, 100.0);
+  ASSERT_EQ(b.record_cutoff_hz.size(), 2u);
+  EXPECT_EQ(b.record_cutoff_hz[0], a.cutoff_hz);
+  EXPECT_EQ(b.record_cutoff_hz[1], b.cutoff_hz);
+  EXPECT_EQ(both[0].x, slow[0].x);
   // The sine survives the filter: the filtered x is within the noise of it.
   double err = 0.0;
   for (size_t i = 0; i < slow[0].t.size(); ++i)

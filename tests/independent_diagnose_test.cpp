@@ -143,19 +143,19 @@ TEST(IndependentDiagnose, SlackStripIsSlack) {
   EXPECT_EQ(d.R.cause, "slack") << d.R.verdict;
 }
 
-// refgen's seed-6 strip is a 12-cell chain: at the tool's 15 cells slack
-// left 1.77% held out (floor 0.78%) and a relaxation spectrum was accepted
-// second for 16% of it. Refitted at 12 cells, slack alone is at the floor,
-// so the spectrum is no cause (stage 5c, other_cells_explain) and the model
-// is the 12-cell one.
+// refgen's seed-6 strip is a 12-cell chain. With one displacement cut-off
+// for all records (the widest any needed) slack at the tool's 15 cells left
+// 1.77% held out (floor 0.78%), a relaxation spectrum was accepted second
+// for 16% of it, and only the 12-cell refit (stage 5c, other_cells_explain)
+// took it back. With each record low-passed at its own band, slack alone at
+// 15 cells is at the floor (0.80%): one cause, and no second word for what
+// the filter did.
 TEST(IndependentDiagnose, SlackStripOfAnotherCellCount) {
   RTB_SKIP_UNDER_SANITIZERS();
   const Diagnosed d = diagnose_refgen("slack", 6);
   EXPECT_EQ(d.R.cause, "slack") << d.R.verdict;
   EXPECT_EQ(d.R.causes.size(), 1u) << d.R.verdict;
-  EXPECT_NE(d.R.extended.p.cells, RTB_DEFAULT_CELLS) << d.R.verdict;
   EXPECT_LT(d.R.extended_error_holdout, 1.3 * d.noise_floor) << d.R.verdict;
-  EXPECT_NE(d.R.verdict.find("cells"), std::string::npos) << d.R.verdict;
 }
 
 // 50 Hz mains hum on the force channel is outside the vocabulary: any

@@ -122,6 +122,7 @@ nlohmann::ordered_json diagnosis_json(const DiagnoseResult &R, const std::vector
                                        "1-4, fitted with band-limited noise (correlation a^|k|)"
                                      : "1.4826 MAD of the 4th differences of the residual / sqrt(70)"}};
   j["displacement_filter"] = {{"cutoff_hz", R.denoise.cutoff_hz},
+                              {"record_cutoff_hz", R.denoise.record_cutoff_hz},
                               {"sigma_x", R.denoise.sigma_x},
                               {"sigma_F", R.denoise.sigma_F},
                               {"noise_ratio", R.denoise.noise_ratio}};

@@ -116,6 +116,16 @@ void joint_fits(std::vector<CandidateOutcome> &out, const Current &cur, const Co
   std::sort(order.begin(), order.end(),
             [&](size_t p, size_t q) { return out[p].screen.dJ > out[q].screen.dJ; });
   if ((int)order.size() > how_many) order.resize((size_t)how_many);
+  // A lead of the force is judged against `viscous`, its first-order twin
+  // (demote_lead_twins), so the dashpot is fitted whenever the lead is,
+  // whatever its screen (blindgen viscous+cubic_stiffness_s9: after the
+  // cubic, the lead's screen ranked `viscous` out, and a 3.2 ms lead was
+  // named for the dashpot).
+  bool lead = false;
+  for (size_t i : order) lead = lead || (out[i].cand.delay && out[i].screen.start.delay_lead);
+  for (size_t i = 0; i < out.size() && lead; ++i)
+    if (out[i].cand.name == "viscous" && std::find(order.begin(), order.end(), i) == order.end())
+      order.push_back(i);
   // What-if: the imposed word is fitted whatever its screen says.
   for (size_t i = 0; i < out.size(); ++i)
     if (out[i].cand.name == imposed && std::find(order.begin(), order.end(), i) == order.end())

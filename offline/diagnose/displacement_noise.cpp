@@ -59,10 +59,12 @@ DisplacementDenoise denoise_displacement(std::vector<Record> &recs, double thres
   if (!(Xmax > 0.0) || !(d.sigma_F > 0.0)) return d;
   d.noise_ratio = 2.0 * Fmax / Xmax * d.sigma_x / d.sigma_F;
   if (d.noise_ratio < threshold) return d;
-  // One cut-off for all records: the widest band any of them needs.
-  for (const Record &r : recs)
-    d.cutoff_hz = std::max(d.cutoff_hz, record_cutoff(r, uniform_step(r), white_noise_sigma(r.x)));
-  for (Record &r : recs) r.x = lowpass_zero_phase(r.x, uniform_step(r), d.cutoff_hz, 4);
+  for (Record &r : recs) {
+    const double fc = record_cutoff(r, uniform_step(r), white_noise_sigma(r.x));
+    d.record_cutoff_hz.push_back(fc);
+    d.cutoff_hz = std::max(d.cutoff_hz, fc);
+    r.x = lowpass_zero_phase(r.x, uniform_step(r), fc, 4);
+  }
   return d;
 }
 
