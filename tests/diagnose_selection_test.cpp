@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "offline/diagnose/diagnose.h"
+#include "offline/diagnose/diagnose_stages.h"
 
 namespace rtb {
 namespace {
@@ -91,6 +92,32 @@ TEST(GainTest, HalfTheExcessOverTheFloorCountsNearTheFloor) {
   EXPECT_FALSE(gain_suffices(0.08, 0.0130, 0.0120, 0.0135, opt.min_gain, opt));
   // The relative rule still passes on its own.
   EXPECT_TRUE(gain_suffices(0.20, 0.0500, 0.0400, 0.0010, opt.min_gain, opt));
+}
+
+// Stage 4: a lead of the force is judged against `viscous` (its first-order
+// twin), so the dashpot is fitted whenever the lead is, however its screen
+// ranked it (blindgen viscous+cubic_stiffness_s9: screened out after the
+// cubic, and the lead was named for the dashpot).
+TEST(JointFitOrder, ALeadOfTheForceBringsTheDashpot) {
+  auto screened = [](const std::string &name, double dJ, bool delay = false, bool lead = false) {
+    CandidateOutcome o = outcome(name, delay ? 0 : 1, 0.0, true, delay);
+    o.screen.z = 10.0;
+    o.screen.dJ = dJ;
+    o.screen.start.delay_lead = lead;
+    return o;
+  };
+  std::vector<CandidateOutcome> r = {screened("maxwell", 0.3), screened("viscous", 0.1),
+                                     screened("delay", 0.5, true, true),
+                                     screened("inertia", 0.2)};
+  // The two best screens; the dashpot joins the lead.
+  EXPECT_EQ(diag::joint_fit_order(r, 2.0, 2, ""), (std::vector<size_t>{2, 0, 1}));
+  // A lag (not a lead) has no twin: the two best only.
+  r[2].screen.start.delay_lead = false;
+  EXPECT_EQ(diag::joint_fit_order(r, 2.0, 2, ""), (std::vector<size_t>{2, 0}));
+  // Below min_z nothing is fitted, unless imposed (what-if).
+  for (CandidateOutcome &o : r) o.screen.z = 1.0;
+  EXPECT_TRUE(diag::joint_fit_order(r, 2.0, 2, "").empty());
+  EXPECT_EQ(diag::joint_fit_order(r, 2.0, 2, "inertia"), (std::vector<size_t>{3}));
 }
 
 }  // namespace

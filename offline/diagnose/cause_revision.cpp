@@ -172,17 +172,6 @@ bool other_cells_explain(Current &cur, const Current &before, const Candidate &c
   return true;
 }
 
-// Stage 5d: does each earlier cause still pay now that a later one is in?
-// A simpler word can stand in for the real one first and the real one
-// follow (refgen relaxation_spectrum_s4: a single Maxwell branch, then the
-// spectrum, 1.49% held out; the spectrum refitted without the branch 1.63%,
-// floor 1.29%, so the branch is dropped). An earlier cause
-// whose removal (its sizes zeroed, the rest refitted) keeps the held-out
-// error within what a further cause must gain (gain_suffices with
-// min_gain_next, as when it was accepted) is dropped. Only words switched
-// off by zeroing their sizes are tried (not a held clearance, slack or the
-// spectrum, whose settings come with them); a dashpot is tried against the
-// spectrum widened too (model_without). Returns the index dropped, or -1.
 namespace {
 
 bool has_cause(const std::vector<Candidate> &causes, const char *name) {
@@ -230,6 +219,17 @@ bool model_without(const Current &cur, size_t i, const Context &cx, Current &wit
 
 }  // namespace
 
+// Stage 5d: does each earlier cause still pay now that a later one is in?
+// A simpler word can stand in for the real one first and the real one
+// follow (refgen relaxation_spectrum_s4: a single Maxwell branch, then the
+// spectrum, 1.49% held out; the spectrum refitted without the branch 1.63%,
+// floor 1.29%, so the branch is dropped). An earlier cause
+// whose removal (its sizes zeroed, the rest refitted) keeps the held-out
+// error within what a further cause must gain (gain_suffices with
+// min_gain_next, as when it was accepted) is dropped. Only words switched
+// off by zeroing their sizes are tried (not a held clearance, slack or the
+// spectrum, whose settings come with them); a dashpot is tried against the
+// spectrum widened too (model_without). Returns the index dropped, or -1.
 int drop_redundant(Current &cur, const Context &cx, DiagnoseResult &R) {
   const DiagnoseOptions &opt = cx.opt;
   for (size_t i = 0; i + 1 < cur.causes.size(); ++i) {

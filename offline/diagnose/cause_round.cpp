@@ -110,26 +110,7 @@ void middle_branch_start(CandidateOutcome &co, const std::vector<Candidate> &wit
 // Stage 4: joint fits of the best-screened candidates (in parallel).
 void joint_fits(std::vector<CandidateOutcome> &out, const Current &cur, const Context &cx,
                 int how_many, const std::string &imposed) {
-  std::vector<size_t> order;
-  for (size_t i = 0; i < out.size(); ++i)
-    if (out[i].screen.z >= cx.opt.min_z) order.push_back(i);
-  std::sort(order.begin(), order.end(),
-            [&](size_t p, size_t q) { return out[p].screen.dJ > out[q].screen.dJ; });
-  if ((int)order.size() > how_many) order.resize((size_t)how_many);
-  // A lead of the force is judged against `viscous`, its first-order twin
-  // (demote_lead_twins), so the dashpot is fitted whenever the lead is,
-  // whatever its screen (blindgen viscous+cubic_stiffness_s9: after the
-  // cubic, the lead's screen ranked `viscous` out, and a 3.2 ms lead was
-  // named for the dashpot).
-  bool lead = false;
-  for (size_t i : order) lead = lead || (out[i].cand.delay && out[i].screen.start.delay_lead);
-  for (size_t i = 0; i < out.size() && lead; ++i)
-    if (out[i].cand.name == "viscous" && std::find(order.begin(), order.end(), i) == order.end())
-      order.push_back(i);
-  // What-if: the imposed word is fitted whatever its screen says.
-  for (size_t i = 0; i < out.size(); ++i)
-    if (out[i].cand.name == imposed && std::find(order.begin(), order.end(), i) == order.end())
-      order.push_back(i);
+  std::vector<size_t> order = joint_fit_order(out, cx.opt.min_z, how_many, imposed);
   // The words screened by a short fit (clearance, slack, Mullins: no
   // closed-form screen) are also the slowest to fit jointly, clearance and
   // slack several times over (a search per step): start them first so that
@@ -286,6 +267,26 @@ void demote_lead_twins(std::vector<CandidateOutcome> &out, const Current &cur) {
 }
 
 }  // namespace
+
+std::vector<size_t> joint_fit_order(const std::vector<CandidateOutcome> &out, double min_z,
+                                    int how_many, const std::string &imposed) {
+  std::vector<size_t> order;
+  for (size_t i = 0; i < out.size(); ++i)
+    if (out[i].screen.z >= min_z) order.push_back(i);
+  std::sort(order.begin(), order.end(),
+            [&](size_t p, size_t q) { return out[p].screen.dJ > out[q].screen.dJ; });
+  if ((int)order.size() > how_many) order.resize((size_t)how_many);
+  auto add = [&](const char *name) {
+    for (size_t i = 0; i < out.size(); ++i)
+      if (out[i].cand.name == name && std::find(order.begin(), order.end(), i) == order.end())
+        order.push_back(i);
+  };
+  bool lead = false;
+  for (size_t i : order) lead = lead || (out[i].cand.delay && out[i].screen.start.delay_lead);
+  if (lead) add("viscous");
+  if (!imposed.empty()) add(imposed.c_str());
+  return order;
+}
 
 // Stages 3-5 at the current model: the outcomes of every remaining candidate.
 std::vector<CandidateOutcome> one_round(const Current &cur, const Context &cx, int round,

@@ -59,6 +59,15 @@ struct Context {
 Current make_current(const ExtModel &m, const ExtFitSpec &spec, const std::vector<Candidate> &causes,
                      const Context &cx);
 
+// Stage 4's choice: the indices of the outcomes to fit jointly, the
+// `how_many` with the largest screened misfit reduction among those with
+// screen z >= min_z; `viscous` too when one of them is a lead of the force
+// (its first-order twin, against which the lead is judged: blindgen
+// viscous+cubic_stiffness_s9, where the lead's screen ranked the dashpot out
+// and a 3.2 ms lead was named for it), and the what-if's `imposed` word.
+std::vector<size_t> joint_fit_order(const std::vector<CandidateOutcome> &out, double min_z,
+                                    int how_many, const std::string &imposed);
+
 // Stages 3-5a at the current model: the outcomes of every remaining
 // candidate of the vocabulary (screened, the best fitted jointly, judged).
 // Adds the screening and joint-fit wall time to R.
