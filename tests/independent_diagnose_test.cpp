@@ -41,9 +41,7 @@ Diagnosed diagnose_refgen(const std::vector<std::string> &effects, unsigned seed
   std::vector<rtb::Record> fit, hold;
   std::vector<refgen::Samples> held;
   for (size_t i = 0; i < sc.records.size(); ++i) {
-    refgen::Chain chain = sc.chain;
-    chain.seed = seed * 100ull + i;
-    const refgen::Samples s = refgen::run_record(sc.specimen, sc.records[i].cmd, chain);
+    const refgen::Samples s = refgen::run_scenario_record(sc, i);
     rtb::Record r;
     r.path = sc.records[i].name;
     r.t = s.t;
@@ -148,7 +146,9 @@ TEST(IndependentDiagnose, SlackStripIsSlack) {
 // 30 or 100 intervals (two per decade: the same times, only the range's
 // start moves): the spectrum gained 12% held out and the verdict was
 // `unexplained`. Screened also at 1.8, 5.6, 18 and 56 intervals, it is
-// named near the floor (session 26: 1.64% against 1.43%).
+// named near the floor (session 26: 1.64% held out, against refgen's force-
+// noise floor of 1.51% that the test holds it to, and the diagnosis' own
+// estimate of 1.43%).
 TEST(IndependentDiagnose, SpectrumBetweenTheBranchTimesIsNamed) {
   RTB_SKIP_UNDER_SANITIZERS();
   const Diagnosed d = diagnose_refgen("relaxation_spectrum", 5);
@@ -219,6 +219,20 @@ TEST(IndependentDiagnose, CreepingForceZeroIsUnexplained) {
   RTB_SKIP_UNDER_SANITIZERS();
   const Diagnosed d = diagnose_refgen("zero_drift", 3);
   expect_unexplained_naming(d, "trend");
+  EXPECT_FALSE(d.R.withdrawn.empty()) << d.R.verdict;
+}
+
+// Each test at its own temperature (out of vocabulary): the records
+// disagree on the force scale by 6-12%, which no word of one specimen
+// follows. Blindgen thermal_drift_s10 (its own convention: the force scaled
+// by a slow sine of the test time) had `maxwell` named for it. On seed 2
+// (scales 0.92-1.08) a cubic spring and a Mullins loss pass the round
+// criteria; what they leave is 83% a scale and drift per record
+// (residual_signature.cpp), and they are withdrawn.
+TEST(IndependentDiagnose, ASpecimenAtAnotherTemperaturePerTestIsUnexplained) {
+  RTB_SKIP_UNDER_SANITIZERS();
+  const Diagnosed d = diagnose_refgen("temperature", 2);
+  expect_unexplained_naming(d, "disagree on the force scale");
   EXPECT_FALSE(d.R.withdrawn.empty()) << d.R.verdict;
 }
 

@@ -134,6 +134,8 @@ nlohmann::ordered_json diagnosis_json(const DiagnoseResult &R, const std::vector
                       {"input_share_at_dominant", R.signature.input_share},
                       {"trend_share", R.signature.trend_share},
                       {"stiffness_drift_share", R.signature.drift_share},
+                      {"record_scale_share", R.signature.record_scale_share},
+                      {"record_scale_spread", R.signature.record_scale_spread},
                       {"where", R.signature.where}};
   j["baseline"] = {{"params", params_to_json(R.baseline.p)},
                    {"error_fit", R.baseline_error_fit},

@@ -46,17 +46,31 @@ bool refit_from_sts(const Current &cur, const Context &cx, ExtFitResult &fit) {
   return true;
 }
 
-// A cause switched off in m: its sizes zeroed and the settings it came with
-// (a slack specimen, a held clearance end, the spectrum's range) back to the
-// plain element's.
+// Cause c's sizes and the settings it came with (a slack specimen, a held
+// clearance end, the spectrum's range), copied from `from` into `to`.
+void copy_cause(const Candidate &c, const ExtModel &from, ExtModel &to) {
+  for (ParamId id : c.extra) param_ref(to.p, id) = param_get(from.p, id);
+  if (c.delay)
+    to.delay = from.delay, to.delay_lowpass = from.delay_lowpass, to.delay_lead = from.delay_lead;
+  if (c.offset) to.offset = from.offset;
+  if (c.name == "slack") to.p.slack = from.p.slack;
+  if (c.name == "backlash") to.p.backlash_held = from.p.backlash_held;
+  if (c.name == "relaxation_spectrum")
+    to.p.spec_tau_min = from.p.spec_tau_min, to.p.spec_tau_max = from.p.spec_tau_max;
+}
+
+// A cause switched off in m: its sizes and settings back to the plain
+// element's.
 void switch_off(const Candidate &c, ExtModel &m) {
-  for (ParamId id : c.extra) param_ref(m.p, id) = 0.0;
-  if (c.delay) m.delay = 0.0, m.delay_lowpass = false, m.delay_lead = false;
-  if (c.offset) m.offset = 0.0;
-  if (c.name == "slack") m.p.slack = 0.0;
-  if (c.name == "backlash") m.p.backlash_held = 0.0;
-  if (c.name == "relaxation_spectrum") m.p.spec_tau_min = m.p.spec_tau_max = 0.0;
+  copy_cause(c, ExtModel(), m);
   admit_K0(m.p);
+}
+
+// True when `name` is one of `causes`.
+static bool has_cause(const std::vector<Candidate> &causes, const char *name) {
+  for (const Candidate &c : causes)
+    if (c.name == name) return true;
+  return false;
 }
 
 // A Maxwell branch faster than the spectrum's fastest is the spectrum's
@@ -64,10 +78,7 @@ void switch_off(const Candidate &c, ExtModel &m) {
 // spectrum screened from 30 ms, then a branch at 14 ms accepted at a 17%
 // gain). True when `c` can be that for a cause of `before`.
 bool extends_spectrum(const Candidate &c, const Current &before) {
-  if (c.name != "maxwell") return false;
-  for (const Candidate &b : before.causes)
-    if (b.name == "relaxation_spectrum") return true;
-  return false;
+  return c.name == "maxwell" && has_cause(before.causes, "relaxation_spectrum");
 }
 
 // Stage 5c, second half: is the accepted cause a cause, or did something
@@ -173,12 +184,6 @@ bool other_cells_explain(Current &cur, const Current &before, const Candidate &c
 }
 
 namespace {
-
-bool has_cause(const std::vector<Candidate> &causes, const char *name) {
-  for (const Candidate &c : causes)
-    if (c.name == name) return true;
-  return false;
-}
 
 // The model without cause i, refitted: the kept causes from the current
 // sizes, and where the cause is a linear dashpot and a spectrum is kept,

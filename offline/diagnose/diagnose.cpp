@@ -75,6 +75,7 @@ Current baseline_and_first_round(Context &cx, DiagnoseResult &R,
     cx.sigma = R.floor.sigma_fit;
     cx.sigma.insert(cx.sigma.end(), R.floor.sigma_holdout.begin(), R.floor.sigma_holdout.end());
     cx.floor_sel = R.has_holdout ? R.floor.error_holdout : R.floor.error_fit;
+    cx.floor_fit = R.floor.error_fit;
     // 3-5a. First round.
     first = diag::one_round(cur, cx, 0, R);
     const CandidateOutcome *better = diag::better_basin(first, cur.error_fit, opt.min_z);
@@ -155,7 +156,7 @@ Current accept_causes(Current cur, std::vector<CandidateOutcome> round_out, cons
   for (int round = 0;; ++round) {
     const CandidateOutcome *best =
         R.imposed ? diag::imposed_cause(round_out, opt.imposed[(size_t)round])
-                  : select_cause(round_out, opt.parsimony, cx.floor_sel);
+                  : select_cause(round_out, opt.parsimony, {cx.floor_sel, cx.floor_fit});
     R.candidates.insert(R.candidates.end(), round_out.begin(), round_out.end());
     if (best) {
       accept_one(cur, *best, round, cx, R);
@@ -175,8 +176,9 @@ Current accept_causes(Current cur, std::vector<CandidateOutcome> round_out, cons
 // Stage 6: the extended model's figures, the residual's signature when it
 // is above the floor, the verdict. Every word of the vocabulary is
 // time-invariant. When what the causes leave above the floor has a slow
-// trend over time (a drifting load-cell zero or stiffness) beyond what any
-// right word leaves (DiagnoseOptions::withdraw_trend_share), they were
+// trend over time (a drifting load-cell zero or stiffness), or records that
+// disagree on the stiffness, beyond what any right word leaves
+// (DiagnoseOptions::withdraw_trend_share and its siblings), they were
 // fitted to compensate a drift in part, and are withdrawn (refgen
 // zero_drift: `offset` or `friction_asymmetry` on seeds 1-4 and 11, each
 // leaving a 23-76% trend).
@@ -188,7 +190,8 @@ void report(const Current &base, const Current &ext, const Context &cx, Diagnose
   if (above_floor(ext, R, opt)) R.signature = signature_of(ext);
   const bool withdraw = !R.imposed && !R.causes.empty() &&
                         (R.signature.trend_share > opt.withdraw_trend_share ||
-                         R.signature.drift_share > opt.withdraw_drift_share);
+                         R.signature.drift_share > opt.withdraw_drift_share ||
+                         R.signature.record_scale_share > opt.withdraw_record_scale_share);
   if (withdraw) {
     R.withdrawn.swap(R.causes);
     R.extended_fit = ExtFitResult();

@@ -52,6 +52,7 @@ struct Context {
   DataScales sc;
   std::vector<double> sigma;  // noise level per record of `all`
   double floor_sel = 0.0;     // the noise floor's eq. (27) error on `sel`
+  double floor_fit = 0.0;     // and on `fit`
   bool clipped = false;       // stage 0 found a saturated force channel
 };
 
@@ -126,6 +127,8 @@ bool prefer_other_definition(std::vector<Candidate> &causes, size_t i, const Con
 void revisit_definitions(Current &cur, const Context &cx, DiagnoseResult &R);
 // A cause switched off in m: its sizes zeroed, its settings the plain element's.
 void switch_off(const Candidate &c, ExtModel &m);
+// Cause c's sizes and settings copied from `from` into `to`.
+void copy_cause(const Candidate &c, const ExtModel &from, ExtModel &to);
 
 // Stage 5e: no single word paid in the first round (`first`); try the
 // leads with a second word. True when a pair paid: cur becomes the pair's

@@ -101,6 +101,40 @@ double feature_share(const std::vector<double> &e, const std::vector<double> &g)
   return (gg > 0 && ee > 0) ? eg * eg / (gg * ee) : 0.0;
 }
 
+// Share of the energy of e (where `use`) that a scale and a linear drift of
+// the model force, each record its own, explain: sum over records of the
+// least-squares fit of e by a F + b (t - t_mid) F. A specimen whose
+// temperature or age differs between tests shows as records that disagree
+// on the force scale, which one set of parameters cannot follow; *spread is
+// the largest minus the smallest per-record scale a (a fraction).
+double record_scale_share(const Series &S, const std::vector<double> &use, double *spread) {
+  double explained = 0.0, total = 0.0, lo = 0.0, hi = 0.0;
+  bool first = true;
+  for (size_t r = 0; r + 1 < S.starts.size(); ++r) {
+    const size_t a = S.starts[r], b = S.starts[r + 1];
+    const double tm = 0.5 * (S.t[a] + S.t[b - 1]);
+    double ff = 0, fg = 0, gg = 0, ef = 0, eg = 0;
+    for (size_t i = a; i < b; ++i) {
+      const double w = use[i], f = S.F[i], g = (S.t[i] - tm) * f;
+      ff += w * f * f;
+      fg += w * f * g;
+      gg += w * g * g;
+      ef += w * S.e[i] * f;
+      eg += w * S.e[i] * g;
+      total += w * S.e[i] * S.e[i];
+    }
+    const double det = ff * gg - fg * fg;
+    if (!(det > 1e-12 * ff * gg)) continue;
+    const double ca = (gg * ef - fg * eg) / det, cb = (ff * eg - fg * ef) / det;
+    explained += ca * ef + cb * eg;
+    lo = first ? ca : std::min(lo, ca);
+    hi = first ? ca : std::max(hi, ca);
+    first = false;
+  }
+  *spread = hi - lo;
+  return total > 0.0 ? explained / total : 0.0;
+}
+
 }  // namespace
 
 namespace diag {
@@ -157,15 +191,17 @@ ResidualSignature residual_signature(const ExtModel &m, const std::vector<Record
   // misses leaves a slow residual there (VHB 4910's 1800 s holds: softening +
   // friction asymmetry, 8.89% held out, were withdrawn for it); a rig's
   // drift shows where the input cycles too.
-  std::vector<double> tt(S.t.size()), tF(S.t.size()), em(S.t.size());
+  std::vector<double> tt(S.t.size()), tF(S.t.size()), em(S.t.size()), moving(S.t.size());
   for (size_t i = 0; i < S.t.size(); ++i) {
     const bool use = !S.held[i];
+    moving[i] = use;
     tt[i] = use ? S.t[i] - 0.5 * T : 0.0;
     tF[i] = tt[i] * S.F[i];
     em[i] = use ? S.e[i] : 0.0;
   }
   sig.trend_share = feature_share(em, tt);
   sig.drift_share = feature_share(em, tF);
+  sig.record_scale_share = record_scale_share(S, moving, &sig.record_scale_spread);
   // Where in the loop (first record's quadrants, from the residual analysis).
   static const char *const quad[4] = {"loading at x > 0", "unloading at x > 0",
                                       "loading at x < 0", "unloading at x < 0"};
@@ -186,6 +222,12 @@ ResidualSignature residual_signature(const ExtModel &m, const std::vector<Record
                   "it grows over time in proportion to the force (%.0f%% explained by t F): a "
                   "drift of the stiffness, e.g. thermal",
                   100 * sig.drift_share);
+  else if (sig.record_scale_share > 0.5 && sig.record_scale_share > sig.drift_share + 0.2)
+    std::snprintf(b, sizeof b,
+                  "the records disagree on the force scale (%.0f%% explained by a scale and a "
+                  "drift of the model force per record; the scales span %.0f%%): the specimen "
+                  "changed between tests, e.g. its temperature",
+                  100 * sig.record_scale_share, 100 * sig.record_scale_spread);
   else if (sig.trend_share > 0.3)
     std::snprintf(b, sizeof b, "a slow trend of the force over time (%.0f%% explained by a + b t)",
                   100 * sig.trend_share);

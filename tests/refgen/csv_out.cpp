@@ -99,7 +99,7 @@ void write_truth_json(const std::string &path, const Scenario &sc,
     (r.holdout ? hold : fit).push_back(&records[i]);
     o << (i ? ",\n    " : "\n    ") << "{\"file\": \"" << r.name << ".csv\", \"role\": \""
       << (r.holdout ? "holdout" : "fit") << "\", \"kind\": \"" << kind_name(r.cmd.kind)
-      << "\", \"amp\": " << r.cmd.amp << ", \"hz\": " << r.cmd.hz
+      << "\", \"amp\": " << r.cmd.amp << ", \"hz\": " << r.cmd.hz << ", \"stiffness\": " << r.stiffness
       << ", \"noise_floor\": " << noise_floor({&records[i]}) << "}";
   }
   o << "\n  ],\n  \"noise_floor_fit\": " << noise_floor(fit)

@@ -16,6 +16,7 @@ const std::vector<std::string> &effect_names() {
       "backlash", "backlash_held",   "mullins",   "delay",    "delay_lowpass", "inertia",
       "offset",   "softening",       "slack",     "relaxation_spectrum",
       "friction_asymmetry",          "hum",       "drift",     "clipping",  "spikes", "zero_drift",
+      "temperature",
       // other definitions of the same words
       "asymmetry_quadratic", "softening_tanh", "mullins_erf", "stiffening_quintic",
       "delay_displacement",
@@ -34,7 +35,7 @@ std::string expected_word(const std::string &effect) {
   if (effect == "preload" || effect == "compression_positive" || effect == "colored_noise")
     return "none";
   if (effect == "hum" || effect == "drift" || effect == "clipping" || effect == "spikes" ||
-      effect == "zero_drift")
+      effect == "zero_drift" || effect == "temperature")
     return "unexplained";
   return effect;
 }
@@ -129,6 +130,10 @@ void apply_effect(Scenario &sc, const std::string &e, Rng &rng) {
   }
   else if (e == "drift")  // stiffness changes 4-8% linearly over each record
     s.drift_rate = rng.sign() * rng.uniform(0.04, 0.08) / T;
+  else if (e == "temperature") {  // each test at its own temperature: forces 6-12% apart
+    const double spread = rng.uniform(0.06, 0.12);
+    for (RecordSpec &r : sc.records) r.stiffness = 1.0 + spread * rng.uniform(-1.0, 1.0);
+  }
   else if (e == "zero_drift")  // the load cell's zero creeps (warming amplifier) by 2-5%
     c.zero_drift = rng.sign() * rng.uniform(0.02, 0.05) * Fel;
   else if (e == "clipping")  // the force channel saturates below the loops' peaks

@@ -130,16 +130,19 @@ Samples run_record(const Specimen &s, const Command &c, const Chain &chain);
 // Effect words: the diagnosis vocabulary (cubic_stiffness, asymmetry, maxwell,
 // viscous, backlash = floating end, backlash_held, mullins, delay, inertia,
 // offset, softening), the new words (slack, relaxation_spectrum,
-// friction_asymmetry) and out of vocabulary (hum, drift); "none" is plain RT.
+// friction_asymmetry) and out of vocabulary (hum, drift, temperature); "none"
+// is plain RT.
 const std::vector<std::string> &effect_names();
 // The diagnosis word the effect should be named by ("backlash" for both
-// clearances; "unexplained" for hum and drift).
+// clearances; "unexplained" for hum, drift and temperature).
 std::string expected_word(const std::string &effect);
 
 struct RecordSpec {
   std::string name;  // file stem, e.g. fit_triangle
   bool holdout = false;
   Command cmd;
+  double stiffness = 1.0;  // the specimen's force laws scale by this in this record
+                           // (a temperature that differs between tests)
 };
 
 struct Scenario {
@@ -159,6 +162,10 @@ struct Scenario {
 // unsupported combination.
 Scenario make_scenario(const std::vector<std::string> &effects, unsigned seed,
                        double duration = 8.0);
+
+// Record i of the scenario: its own noise stream (seed 100 sc.seed + i) and
+// the specimen at the record's stiffness. Throws as run_record.
+Samples run_scenario_record(const Scenario &sc, size_t i);
 
 // ------------------------------------------------------------------ output
 // Writes one record as CSV in the scenario's column convention (temp file +

@@ -78,11 +78,7 @@ int run(int argc, char **argv) {
   refgen::Scenario sc = refgen::make_scenario(split_commas(effects), (unsigned)seed, duration);
   if (noise_free) sc.chain.force_noise = sc.chain.disp_noise = 0.0;
   std::vector<refgen::Samples> recs;  // all first: a failure writes nothing
-  for (size_t i = 0; i < sc.records.size(); ++i) {
-    refgen::Chain chain = sc.chain;
-    chain.seed = sc.seed * 100ull + i;  // a noise stream per record
-    recs.push_back(refgen::run_record(sc.specimen, sc.records[i].cmd, chain));
-  }
+  for (size_t i = 0; i < sc.records.size(); ++i) recs.push_back(refgen::run_scenario_record(sc, i));
   std::filesystem::create_directories(out_dir);
   for (size_t i = 0; i < sc.records.size(); ++i)
     refgen::write_record_csv(out_dir + "/" + sc.records[i].name + ".csv", recs[i], sc.column_style);

@@ -114,4 +114,18 @@ Scenario make_scenario(const std::vector<std::string> &effects, unsigned seed, d
   return sc;
 }
 
+Samples run_scenario_record(const Scenario &sc, size_t i) {
+  // Every force law scales with the stiffness; the states, which the laws
+  // balance, do not move.
+  Specimen s = sc.specimen;
+  const double k = sc.records.at(i).stiffness;
+  for (double *f : {&s.K0, &s.Kpa, &s.Kr, &s.C0, &s.cubic, &s.asym, &s.soft_k, &s.quad,
+                    &s.quintic, &s.viscous})
+    *f *= k;
+  for (Branch &b : s.branches) b.k *= k;
+  Chain chain = sc.chain;
+  chain.seed = sc.seed * 100ull + i;  // a noise stream per record
+  return run_record(s, sc.records[i].cmd, chain);
+}
+
 }  // namespace refgen
