@@ -6,8 +6,11 @@
 # displacement noise (`delay` before the stage-0 filter threshold), a slack
 # strip whose baseline switched the cell chain off (`mullins` before the
 # STS restart of collapsed joint fits), and a Mullins loss with a force delay
-# (`unexplained` before the third pair lead), through `rtb diagnose`: every
-# case named right, no wrong word. Exit 77 (ctest: skipped)
+# (`unexplained` before the third pair lead), and two of seed 10 that
+# session 27's changes named right: a relaxation spectrum that parsimony
+# gave to a dashpot, and a dashpot beside a cubic spring that the RT core
+# absorbed (the cubic only), through `rtb diagnose`: every case named
+# right, no wrong word. Exit 77 (ctest: skipped)
 # without numpy and scipy (python3-numpy, python3-scipy; `make deps` installs them).
 set -u
 rtb=$1
@@ -20,5 +23,6 @@ if ! "$py" -c 'import numpy, scipy' 2>/dev/null; then
 fi
 rm -rf "$out"
 bash "$here/run_blind.sh" --build "$(dirname "$rtb")" --out "$out" --timeout 300 \
-  --cases "none:1 mullins:1 softening:2 viscous:5 slack:5 mullins,delay:5" || exit 1
+  --cases "none:1 mullins:1 softening:2 viscous:5 slack:5 mullins,delay:5 \
+  relaxation_spectrum:10 viscous,cubic_stiffness:10" || exit 1
 "$py" "$here/score_blind.py" --strict "$out"
