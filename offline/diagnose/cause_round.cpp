@@ -231,6 +231,20 @@ void judge(CandidateOutcome &co, const Current &cur, const Context &cx, double m
   }
 }
 
+// The word's own earlier-round fit with the current causes' sizes; false
+// when it was not fitted jointly before.
+bool earlier_round_start(const CandidateOutcome &co, const Current &cur,
+                         const std::vector<CandidateOutcome> &earlier, ExtModel *start) {
+  const CandidateOutcome *before = nullptr;
+  for (const CandidateOutcome &e : earlier)
+    if (e.joint && e.cand.name == co.cand.name && e.cand.variant == co.cand.variant) before = &e;
+  if (!before) return false;
+  *start = before->fit.model;
+  start->p.cells = cur.model.p.cells;
+  for (const Candidate &c : cur.causes) copy_cause(c, cur.model, *start);
+  return true;
+}
+
 // A word fitted in a later round starts where the screen puts it, at the
 // current model, whose core absorbed the word's effect while the earlier
 // causes were fitted without it; the fit can stay in that basin. Two ways
@@ -246,20 +260,6 @@ void judge(CandidateOutcome &co, const Current &cur, const Context &cx, double m
 //   viscous+cubic_stiffness_s10: after the cubic, Kpa = 9e4 and alpha =
 //   0.97 made the chain's first dashpot a linear one, and `viscous` gained
 //   30% held out at z = 0.04).
-// The word's own earlier-round fit with the current causes' sizes; false
-// when it was not fitted jointly before.
-bool earlier_round_start(const CandidateOutcome &co, const Current &cur,
-                         const std::vector<CandidateOutcome> &earlier, ExtModel *start) {
-  const CandidateOutcome *before = nullptr;
-  for (const CandidateOutcome &e : earlier)
-    if (e.joint && e.cand.name == co.cand.name && e.cand.variant == co.cand.variant) before = &e;
-  if (!before) return false;
-  *start = before->fit.model;
-  start->p.cells = cur.model.p.cells;
-  for (const Candidate &c : cur.causes) copy_cause(c, cur.model, *start);
-  return true;
-}
-
 void refit_from_other_basin(CandidateOutcome &co, const Current &cur, const Context &cx,
                             const std::vector<CandidateOutcome> &earlier, double min_gain) {
   const DiagnoseOptions &opt = cx.opt;

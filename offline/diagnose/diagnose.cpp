@@ -156,7 +156,7 @@ Current accept_causes(Current cur, std::vector<CandidateOutcome> round_out, cons
   for (int round = 0;; ++round) {
     const CandidateOutcome *best =
         R.imposed ? diag::imposed_cause(round_out, opt.imposed[(size_t)round])
-                  : select_cause(round_out, opt.parsimony, {cx.floor_sel, cx.floor_fit});
+                  : select_cause(round_out, opt.parsimony, cx.floors());
     R.candidates.insert(R.candidates.end(), round_out.begin(), round_out.end());
     if (best) {
       accept_one(cur, *best, round, cx, R);

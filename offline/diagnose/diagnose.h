@@ -108,9 +108,9 @@ struct DiagnoseOptions {
   // record: the records disagree on the stiffness (a specimen warmer or
   // older in one test than another), which no word of one specimen follows.
   // Blindgen thermal_drift_s10 leaves 0.95 after `maxwell` (named for it),
-  // s11 0.91; the right words of 11 kept cases whose residual stays above
-  // the floor (mullins, inertia, viscous+cubic_stiffness, backlash+cubic,
-  // maxwell+offset) leave 0.05-0.39.
+  // s11 0.91; the words named on 8 cases whose residual stays above the
+  // floor (mullins, inertia, viscous, viscous+cubic_stiffness,
+  // backlash+cubic, maxwell+offset) leave 0.05-0.39.
   double withdraw_record_scale_share = 0.6;
   // Stage 5e (cause_pair.cpp): when no single word pays in the first round
   // and the baseline is above pair_above_floor times the floor, the

@@ -53,6 +53,7 @@ struct Context {
   std::vector<double> sigma;  // noise level per record of `all`
   double floor_sel = 0.0;     // the noise floor's eq. (27) error on `sel`
   double floor_fit = 0.0;     // and on `fit`
+  SelectionFloors floors() const { return {floor_sel, floor_fit}; }
   bool clipped = false;       // stage 0 found a saturated force channel
 };
 
