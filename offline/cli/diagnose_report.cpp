@@ -69,6 +69,11 @@ nlohmann::ordered_json causes_json(const DiagnoseResult &R) {
     e["gain"] = num(c.gain);
     e["error_holdout"] = num(c.error_holdout);
     if (c.paired) e["paired"] = true;  // stage 5e: neither paid alone at the baseline
+    if (c.on_fit_records) {  // the held-out records were at their floor
+      e["judged_on"] = "fit";
+      e["error_fit"] = num(c.error_fit);
+      e["error_fit_before"] = num(c.error_fit_before);
+    }
     a.push_back(e);
   }
   return a;

@@ -80,7 +80,7 @@ bool pair_of_causes(Current &cur, const std::vector<CandidateOutcome> &first, co
     const std::vector<Candidate> one_cause = {a->cand};
     const Current one = make_current(a->fit.model, combined_spec(one_cause, cx.sc), one_cause, cx);
     std::vector<CandidateOutcome> next = one_round(one, cx, 1, R);
-    const CandidateOutcome *b = select_cause(next, opt.parsimony, cx.floors());
+    const CandidateOutcome *b = select_cause(next, opt.parsimony, cx.selection_scales());
     if (!b) continue;
     // The lead's definition was chosen against the baseline, where the
     // second word's absence could decide it (refgen delay+asymmetry_s8 and

@@ -36,6 +36,22 @@ double fastest_branch_share(const rtb_params &p) {
   return sp.M > 0 ? sp.w[0] : 0.0;
 }
 
+// diagnose_stages.h.
+double amplitude_z(const Candidate &c, const ExtFitResult &f) {
+  std::string amp;
+  if (!c.extra.empty()) amp = param_name(c.extra[0]);
+  else if (c.delay) amp = "delay";
+  else if (c.offset) amp = "offset";
+  else return INFINITY;  // a switch (slack): judged by BIC and gain alone
+  for (size_t i = 0; i < f.names.size(); ++i)
+    if (f.names[i] == amp) {
+      const double sd = f.stddev_valid ? f.stddev[(Eigen::Index)i] : NAN;
+      if (!std::isfinite(sd)) return NAN;  // no Wald figure: see evaluate()
+      return sd > 0.0 ? std::fabs(f.value[(Eigen::Index)i]) / sd : INFINITY;
+    }
+  return 0.0;
+}
+
 namespace {
 
 // A size pinned at the edge of its admissible range (a dashpot level
@@ -56,23 +72,6 @@ bool chain_collapsed(const rtb_params &p) {
   return p.Kr < k || p.Kpa < k;
 }
 
-// Size of the effect (its first parameter, or the delay / offset) over its
-// standard deviation: the Wald z. NaN when the fit has no finite standard
-// deviation for it (a size at a clamp, a singular covariance).
-double amplitude_z(const Candidate &c, const ExtFitResult &f) {
-  std::string amp;
-  if (!c.extra.empty()) amp = param_name(c.extra[0]);
-  else if (c.delay) amp = "delay";
-  else if (c.offset) amp = "offset";
-  else return INFINITY;  // a switch (slack): judged by BIC and gain alone
-  for (size_t i = 0; i < f.names.size(); ++i)
-    if (f.names[i] == amp) {
-      const double sd = f.stddev_valid ? f.stddev[(Eigen::Index)i] : NAN;
-      if (!std::isfinite(sd)) return NAN;  // no Wald figure: see evaluate()
-      return sd > 0.0 ? std::fabs(f.value[(Eigen::Index)i]) / sd : INFINITY;
-    }
-  return 0.0;
-}
 
 // A Maxwell branch's time has a basin per time scale the records excite,
 // and the screen chooses its start by a linear prediction at the baseline,
@@ -110,7 +109,7 @@ void middle_branch_start(CandidateOutcome &co, const std::vector<Candidate> &wit
 // Stage 4: joint fits of the best-screened candidates (in parallel).
 void joint_fits(std::vector<CandidateOutcome> &out, const Current &cur, const Context &cx,
                 int how_many, const std::string &imposed) {
-  std::vector<size_t> order = joint_fit_order(out, cx.opt.min_z, how_many, imposed);
+  std::vector<size_t> order = joint_fit_order(out, cx.opt.min_z, how_many, cx.opt.joint_fit_tie, imposed);
   // The words screened by a short fit (clearance, slack, Mullins: no
   // closed-form screen) are also the slowest to fit jointly, clearance and
   // slack several times over (a search per step): start them first so that
@@ -215,7 +214,7 @@ void judge(CandidateOutcome &co, const Current &cur, const Context &cx, double m
                  ? "its weight is on its fastest branch, below 2 sample intervals: a viscous dashpot"
                  : "its weight is on its fastest branch: one Maxwell branch, not a spectrum";
   else if (co.dbic < opt.min_dbic) co.why = "fit gain explained by the extra parameters (delta BIC)";
-  else if (!gain_suffices(co.gain, cur.error_holdout, co.error_holdout, cx.floor_sel, min_gain, opt)) {
+  else if (!cause_pays(cur.errors(), co.errors(), cx.selection_scales(), min_gain, opt)) {
     co.why = cx.holdout.empty() ? "fit gain below min_gain" : "held-out gain below min_gain";
     co.lead = true;
   } else {
@@ -329,13 +328,20 @@ void demote_lead_twins(std::vector<CandidateOutcome> &out, const Current &cur) {
 }  // namespace
 
 std::vector<size_t> joint_fit_order(const std::vector<CandidateOutcome> &out, double min_z,
-                                    int how_many, const std::string &imposed) {
+                                    int how_many, double tie, const std::string &imposed) {
   std::vector<size_t> order;
   for (size_t i = 0; i < out.size(); ++i)
     if (out[i].screen.z >= min_z) order.push_back(i);
   std::sort(order.begin(), order.end(),
             [&](size_t p, size_t q) { return out[p].screen.dJ > out[q].screen.dJ; });
-  if ((int)order.size() > how_many) order.resize((size_t)how_many);
+  size_t keep = std::min(order.size(), (size_t)std::max(0, how_many));
+  // A cut at no reduction at all (short-fit screens clamp at 0) is no tie:
+  // it would bring every screen of the round (VHB 4910's later rounds).
+  if (keep > 0 && out[order[keep - 1]].screen.dJ > 0.0) {
+    const double cut = tie * out[order[keep - 1]].screen.dJ;
+    while (keep < order.size() && out[order[keep]].screen.dJ >= cut) ++keep;
+  }
+  order.resize(keep);
   auto add = [&](const char *name) {
     for (size_t i = 0; i < out.size(); ++i)
       if (out[i].cand.name == name && std::find(order.begin(), order.end(), i) == order.end())
@@ -465,6 +471,26 @@ bool gain_suffices(double gain, double current, double candidate, double floor, 
                               excess_removed(current, candidate, floor) >= opt.min_excess_removed);
 }
 
+bool fit_records_decide(const ModelErrors &without, const ModelErrors &with,
+                        const SelectionScales &sc, const DiagnoseOptions &opt) {
+  return sc.sel > 0.0 && sc.fit > 0.0 && without.holdout <= opt.holdout_at_floor * sc.sel &&
+         without.fit - sc.fit >= opt.min_fit_excess * sc.fit &&
+         excess_removed(without.fit, with.fit, sc.fit) >= opt.min_excess_removed &&
+         with.holdout <= without.holdout;
+}
+
+bool held_out_pays(const ModelErrors &without, const ModelErrors &with, const SelectionScales &sc,
+                   double min_gain, const DiagnoseOptions &opt) {
+  const double gain = 1.0 - with.holdout_trimmed / without.holdout_trimmed;
+  return gain_suffices(gain, without.holdout, with.holdout, sc.sel, min_gain, opt);
+}
+
+bool cause_pays(const ModelErrors &without, const ModelErrors &with, const SelectionScales &sc,
+                double min_gain, const DiagnoseOptions &opt) {
+  return held_out_pays(without, with, sc, min_gain, opt) ||
+         fit_records_decide(without, with, sc, opt);
+}
+
 bool is_candidate_name(const std::string &name) {
   for (const Candidate &c : candidate_vocabulary())
     if (c.name == name) return true;
@@ -484,14 +510,21 @@ static bool takes_most_of(double big, double small, double floor) {
   const double excess = small - floor;
   return excess > 0.1 * floor && big - floor <= 0.5 * excess;
 }
+static bool no_worse(const CandidateOutcome &a, const CandidateOutcome &b) {
+  return a.error_holdout_trimmed <= b.error_holdout_trimmed && a.fit.error <= b.fit.error;
+}
 static bool refines(const CandidateOutcome &big, const CandidateOutcome &small,
-                    const SelectionFloors &floor) {
+                    const SelectionScales &sc) {
   if (big.cand.name == "softening" && small.cand.name == "cubic_stiffness" &&
-      small.fit.model.p.k3 < 0.0)
-    return takes_most_of(big.error_holdout_trimmed, small.error_holdout_trimmed, floor.sel);
+      small.fit.model.p.k3 < 0.0) {
+    const double d = big.fit.model.p.sat_disp;
+    const bool saturates = d > 0.0 && d <= sc.stroke;
+    return takes_most_of(big.error_holdout_trimmed, small.error_holdout_trimmed, sc.sel) ||
+           (saturates && no_worse(big, small));
+  }
   if (big.cand.name == "relaxation_spectrum" && small.cand.name == "viscous")
     return big.error_holdout_trimmed <= small.error_holdout_trimmed &&
-           takes_most_of(big.fit.error, small.fit.error, floor.fit);
+           takes_most_of(big.fit.error, small.fit.error, sc.fit);
   return false;
 }
 
@@ -500,10 +533,10 @@ static bool refines(const CandidateOutcome &big, const CandidateOutcome &small,
 // (then the lower error), unless a nesting word refines it. nullptr when
 // none is eligible.
 const CandidateOutcome *select_cause(const std::vector<CandidateOutcome> &round,
-                                     double parsimony, const SelectionFloors &floor) {
+                                     double parsimony, const SelectionScales &scales) {
   auto refined = [&](const CandidateOutcome &co) {
     for (const CandidateOutcome &o : round)
-      if (o.eligible && refines(o, co, floor)) return true;
+      if (o.eligible && refines(o, co, scales)) return true;
     return false;
   };
   const CandidateOutcome *best = nullptr;

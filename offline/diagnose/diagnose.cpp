@@ -134,7 +134,11 @@ void accept_one(Current &cur, const CandidateOutcome &best, int round, const Con
         diag::not_a_cause(cur, before, best.cand, cx, R)) ||
        diag::other_cells_explain(cur, before, best.cand, cx, R));
   if (!rejected) {
-    R.causes.push_back(diag::make_cause(accepted, before));
+    Cause c = diag::make_cause(accepted, before);
+    const double min_gain = round == 0 ? cx.opt.min_gain : cx.opt.min_gain_next;
+    c.on_fit_records =
+        !held_out_pays(before.errors(), accepted.errors(), cx.selection_scales(), min_gain, cx.opt);
+    R.causes.push_back(c);
     R.extended_fit = accepted.fit;
   }
   if (!R.imposed && !rejected) {
@@ -142,6 +146,8 @@ void accept_one(Current &cur, const CandidateOutcome &best, int round, const Con
     if (gone >= 0) R.causes.erase(R.causes.begin() + gone);
     diag::spectrum_to_one_branch(cur, cx, R);
     diag::revisit_definitions(cur, cx, R);
+    const int vanished = diag::drop_vanished(cur, cx, R);
+    if (vanished >= 0) R.causes.erase(R.causes.begin() + vanished);
   }
 }
 
@@ -156,7 +162,7 @@ Current accept_causes(Current cur, std::vector<CandidateOutcome> round_out, cons
   for (int round = 0;; ++round) {
     const CandidateOutcome *best =
         R.imposed ? diag::imposed_cause(round_out, opt.imposed[(size_t)round])
-                  : select_cause(round_out, opt.parsimony, cx.floors());
+                  : select_cause(round_out, opt.parsimony, cx.selection_scales());
     R.candidates.insert(R.candidates.end(), round_out.begin(), round_out.end());
     if (best) {
       accept_one(cur, *best, round, cx, R);

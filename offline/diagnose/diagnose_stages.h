@@ -32,6 +32,7 @@ struct Current {
   std::vector<Candidate> causes;
   double error_fit = 0, error_holdout = 0, error_holdout_trimmed = 0;
   double J_trim = 0;  // trimmed fit misfit
+  ModelErrors errors() const { return {error_fit, error_holdout, error_holdout_trimmed}; }
 };
 
 // The records of `a` followed by those of `b` (fit then held-out: the
@@ -53,7 +54,7 @@ struct Context {
   std::vector<double> sigma;  // noise level per record of `all`
   double floor_sel = 0.0;     // the noise floor's eq. (27) error on `sel`
   double floor_fit = 0.0;     // and on `fit`
-  SelectionFloors floors() const { return {floor_sel, floor_fit}; }
+  SelectionScales selection_scales() const { return {floor_sel, floor_fit, sc.Xmax}; }
   bool clipped = false;       // stage 0 found a saturated force channel
 };
 
@@ -63,12 +64,13 @@ Current make_current(const ExtModel &m, const ExtFitSpec &spec, const std::vecto
 
 // Stage 4's choice: the indices of the outcomes to fit jointly, the
 // `how_many` with the largest screened misfit reduction among those with
-// screen z >= min_z; `viscous` too when one of them is a lead of the force
+// screen z >= min_z, and any screened within a factor `tie` of the last of
+// them (a near tie); `viscous` too when one of them is a lead of the force
 // (its first-order twin, against which the lead is judged: blindgen
 // viscous+cubic_stiffness_s9, where the lead's screen ranked the dashpot out
 // and a 3.2 ms lead was named for it), and the what-if's `imposed` word.
 std::vector<size_t> joint_fit_order(const std::vector<CandidateOutcome> &out, double min_z,
-                                    int how_many, const std::string &imposed);
+                                    int how_many, double tie, const std::string &imposed);
 
 // Stages 3-5a at the current model: the outcomes of every remaining
 // candidate of the vocabulary (screened, the best fitted jointly, judged).
@@ -109,6 +111,15 @@ bool other_cells_explain(Current &cur, const Current &before, const Candidate &c
                          const Context &cx, DiagnoseResult &R);
 // Stage 5d: drop an earlier cause that no longer pays; its index, or -1.
 int drop_redundant(Current &cur, const Context &cx, DiagnoseResult &R);
+// Stage 5d: drop a cause whose size the revisions after its acceptance took
+// to nothing (z < min_z in the current fit) and that no longer pays; its
+// index, or -1.
+int drop_vanished(Current &cur, const Context &cx, DiagnoseResult &R);
+// Size of cause c's effect (its first parameter, or the delay / offset) in
+// fit f over its standard deviation: the Wald z. NaN when the fit has no
+// finite standard deviation for it (a size at a clamp, a singular
+// covariance); infinite for a switch (slack).
+double amplitude_z(const Candidate &c, const ExtFitResult &f);
 // Stage 5d: a relaxation spectrum refitted onto its fastest branch becomes
 // that branch's word (`viscous` or `maxwell`); the index replaced, or -1.
 int spectrum_to_one_branch(Current &cur, const Context &cx, DiagnoseResult &R);

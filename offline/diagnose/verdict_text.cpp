@@ -73,6 +73,11 @@ std::string verdict_text(const DiagnoseResult &R) {
     v += "; trimmed of isolated spikes (the selection's figure) " +
          pct(R.baseline_error_holdout_trimmed) + " -> " + pct(R.extended_error_holdout_trimmed) +
          ": the rise is in a few samples";
+  for (const Cause &c : R.causes)
+    if (c.on_fit_records)
+      v += "; " + c.cand.name + " judged on the fit records (" + pct(c.error_fit_before) + " -> " +
+           pct(c.error_fit) + ", floor " + pct(R.floor.error_fit) +
+           "): the held-out ones are at their noise floor and show none of it";
   if (!R.causes.empty() && !clipped.empty()) v += "; and " + clipped;
   if (!R.causes.empty() && !spiked.empty()) v += "; and " + spiked;
   if (!R.causes.empty() && R.residual_above_floor) {

@@ -1,20 +1,37 @@
 #!/usr/bin/env bash
-# ctest_blind.sh RTB OUTDIR -- the blind generator's cases whose verdicts its
-# effect definitions changed (a Mullins loss on the whole material, a tanh
-# softening that parsimony gave to a degressive cubic), plain data, and three
-# of seed 5 that session 19's changes named right: a dashpot behind a small
-# displacement noise (`delay` before the stage-0 filter threshold), a slack
-# strip whose baseline switched the cell chain off (`mullins` before the
-# STS restart of collapsed joint fits), and a Mullins loss with a force delay
-# (`unexplained` before the third pair lead), and two of seed 10 that
-# session 27's changes named right: a relaxation spectrum that parsimony
-# gave to a dashpot, and a dashpot beside a cubic spring that the RT core
-# absorbed (the cubic only), through `rtb diagnose`: every case named
-# right, no wrong word. Exit 77 (ctest: skipped)
-# without numpy and scipy (python3-numpy, python3-scipy; `make deps` installs them).
+# ctest_blind.sh RTB OUTDIR CASES -- blind-generator cases through `rtb
+# diagnose`: every case named right, no wrong word. CASES is run_blind.sh's
+# --cases list; tests/CMakeLists.txt splits these into three groups:
+#   none:1                     plain data;
+#   mullins:1, softening:2     cases whose verdicts its effect definitions
+#                              changed (a Mullins loss on the whole material;
+#                              a tanh softening that parsimony gave to a
+#                              degressive cubic);
+#   viscous:5                  a dashpot behind a small displacement noise
+#                              (`delay` before the stage-0 filter threshold);
+#   slack:5                    a slack strip whose baseline switched the cell
+#                              chain off (`mullins` before the STS restart of
+#                              collapsed joint fits);
+#   mullins,delay:5            a Mullins loss with a force delay
+#                              (`unexplained` before the third pair lead);
+#   relaxation_spectrum:10     a spectrum that parsimony gave to a dashpot;
+#   viscous,cubic_stiffness:10 a dashpot beside a cubic spring that the RT
+#                              core absorbed (the cubic only);
+#   inertia,softening:13       a tanh spring saturating within the stroke
+#                              (a degressive cubic before session 28);
+#   mullins,delay:13           an erf Mullins loss screened sixth by 1%
+#                              (`unexplained` before the screen's tie band);
+#   slack:13                   slack seen in the fit records only, the
+#                              held-out one at its floor (`none` before the
+#                              fit records decided there);
+#   delay,asymmetry:14         a third word whose size the revisions took to
+#                              nothing (named before drop_vanished).
+# Exit 77 (ctest: skipped) without numpy and scipy (python3-numpy,
+# python3-scipy; `make deps` installs them).
 set -u
 rtb=$1
 out=$2
+cases=$3
 here=$(cd "$(dirname "$0")" && pwd)
 py=/usr/bin/python3
 if ! "$py" -c 'import numpy, scipy' 2>/dev/null; then
@@ -23,6 +40,5 @@ if ! "$py" -c 'import numpy, scipy' 2>/dev/null; then
 fi
 rm -rf "$out"
 bash "$here/run_blind.sh" --build "$(dirname "$rtb")" --out "$out" --timeout 300 \
-  --cases "none:1 mullins:1 softening:2 viscous:5 slack:5 mullins,delay:5 \
-  relaxation_spectrum:10 viscous,cubic_stiffness:10" || exit 1
+  --cases "$cases" || exit 1
 "$py" "$here/score_blind.py" --strict "$out"
