@@ -98,7 +98,8 @@ TEST(SelectCause, ASpringThatSaturatesWithinTheStrokeIsASoftening) {
   r[1].fit.error = 0.0440;
   EXPECT_EQ(select_cause(r, 0.10, {0.07375, 0.0396, 2.73})->cand.name, "cubic_stiffness");
   // refgen cubic_stiffness_s3 (a degressive cubic, stroke 1.26 mm): the
-  // softening fitted to it has d = 2.49 mm.
+  // softening fitted to it has d = 2.49 mm (and is slightly worse on both
+  // sets: either keeps the cubic).
   r = {fitted("cubic_stiffness", 1, 0.00919, 0.01286, -73.1, 0.0),
        fitted("softening", 2, 0.00921, 0.01291, 0.0, 2.493)};
   EXPECT_EQ(select_cause(r, 0.10, {0.01255, 0.0087, 1.26})->cand.name, "cubic_stiffness");

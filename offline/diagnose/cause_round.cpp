@@ -335,8 +335,8 @@ std::vector<size_t> joint_fit_order(const std::vector<CandidateOutcome> &out, do
   std::sort(order.begin(), order.end(),
             [&](size_t p, size_t q) { return out[p].screen.dJ > out[q].screen.dJ; });
   size_t keep = std::min(order.size(), (size_t)std::max(0, how_many));
-  // A cut at no reduction at all (short-fit screens clamp at 0) is no tie:
-  // it would bring every screen of the round (VHB 4910's later rounds).
+  // A cut at no reduction at all is no tie: short-fit screens clamp at 0,
+  // and every one of them would come with it.
   if (keep > 0 && out[order[keep - 1]].screen.dJ > 0.0) {
     const double cut = tie * out[order[keep - 1]].screen.dJ;
     while (keep < order.size() && out[order[keep]].screen.dJ >= cut) ++keep;

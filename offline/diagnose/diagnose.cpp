@@ -137,7 +137,7 @@ void accept_one(Current &cur, const CandidateOutcome &best, int round, const Con
     Cause c = diag::make_cause(accepted, before);
     const double min_gain = round == 0 ? cx.opt.min_gain : cx.opt.min_gain_next;
     c.on_fit_records =
-        !held_out_pays(before.errors(), accepted.errors(), cx.selection_scales(), min_gain, cx.opt);
+        !held_out_pays(before.errors(), cur.errors(), cx.selection_scales(), min_gain, cx.opt);
     R.causes.push_back(c);
     R.extended_fit = accepted.fit;
   }
