@@ -1,6 +1,9 @@
 # rt_bushing -- top-level driver (GNU make). Everything is built with CMake:
 #   make          configure + build Release into build/
 #   make test     Release tests + symbol check, then an ASan/UBSan tree in build-asan/
+#                 (the long tier excluded: ctest -LE long)
+#   make test-long  the long tier: end-to-end diagnoses of more than ~25 s
+#                 each (tests/CMakeLists.txt), Release, ~20 min on 2 cores
 #   make demo     build, then run `build/rtb demo`
 #   make bench    build, then run the Google Benchmark suite (JSON in build/bench.json)
 #   make report   build, then run `build/rtb report`
@@ -40,7 +43,7 @@ FUZZ_PACKAGES := cmake make clang-14 libfuzzer-14-dev nlohmann-json3-dev
 # make embedded only (issue #11): cross toolchain, newlib, the QEMU board.
 EMBEDDED_PACKAGES := gcc-arm-none-eabi libnewlib-arm-none-eabi qemu-system-arm python3
 
-.PHONY: all deps fuzz-deps deps-embedded configure build test test-release check-symbols \
+.PHONY: all deps fuzz-deps deps-embedded configure build test test-release test-long check-symbols \
         test-asan demo bench report embedded fuzz fmu acceptance blind clean
 
 all: build
@@ -94,7 +97,10 @@ test: test-release check-symbols test-asan
 	@echo "make test: all passed"
 
 test-release: build
-	cd $(BUILD) && $(CTEST) --output-on-failure --timeout 600 -j $(JOBS)
+	cd $(BUILD) && $(CTEST) --output-on-failure --timeout 600 -j $(JOBS) -LE long
+
+test-long: build
+	cd $(BUILD) && $(CTEST) --output-on-failure --timeout 900 -j $(JOBS) -L long
 
 check-symbols: build
 	bash tests/check_symbols.sh $(BUILD)/librt_bushing.a
@@ -112,7 +118,7 @@ test-asan: deps
 	$(SUBMAKE_ENV) $(CMAKE) --build $(ASAN) --parallel $(JOBS)
 	cd $(ASAN) && ASAN_OPTIONS=detect_leaks=1 \
 	  UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 \
-	  $(CTEST) --output-on-failure --timeout 900 -j $(JOBS)
+	  $(CTEST) --output-on-failure --timeout 900 -j $(JOBS) -LE long
 
 # ------------------------------------------------------------------ tools
 demo: build

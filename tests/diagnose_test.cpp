@@ -27,9 +27,10 @@ namespace {
 // diagnosis takes the longest path (short fits, several rounds).
 const std::vector<std::string> kEffects = {"backlash"};
 #else
-const std::vector<std::string> kEffects = {"none",     "cubic_stiffness", "asymmetry", "maxwell",
-                                           "viscous",  "backlash",        "mullins",   "delay",
-                                           "inertia",  "offset",          "softening"};
+const std::vector<std::string> kEffects = {"none",  "offset", "backlash", "mullins",
+                                           "delay", "maxwell", "inertia"};
+// The long tier (`make test-long`, tests/CMakeLists.txt): 21-53 s CPU each.
+const std::vector<std::string> kLongEffects = {"cubic_stiffness", "asymmetry", "viscous", "softening"};
 #endif
 // 4 s records (8 s until session 9): the same verdicts in a third of the
 // time, which keeps `make test` well under 15 minutes. Longer records are
@@ -99,6 +100,9 @@ TEST_P(DiagnoseHidden, NamesTheHiddenEffect) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Seed5, DiagnoseHidden, ::testing::ValuesIn(kEffects));
+#if !defined(__SANITIZE_ADDRESS__)
+INSTANTIATE_TEST_SUITE_P(Seed5Long, DiagnoseHidden, ::testing::ValuesIn(kLongEffects));
+#endif
 
 #if !defined(__SANITIZE_ADDRESS__)  // statistics, not memory: the Release tree runs it
 // BM_Diagnose's Maxwell records (10 s): a Maxwell branch leaves a phase that

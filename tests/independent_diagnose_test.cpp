@@ -7,7 +7,10 @@
 //
 // Each case costs a diagnosis (about 15-60 s CPU in Release): they run in
 // the Release tree only; the sanitizer tree runs the refgen unit tests and
-// diagnose_test.cpp's short subset, which cover the same code paths.
+// diagnose_test.cpp's short subset, which cover the same code paths. Most
+// of them are the long tier (`make test-long`; the list is in
+// tests/CMakeLists.txt); `make test` runs the plain, slack, spectrum and two
+// out-of-vocabulary cases.
 #ifdef RTB_HAVE_OFFLINE
 #include <gtest/gtest.h>
 

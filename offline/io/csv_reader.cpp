@@ -130,7 +130,7 @@ struct Ctx {
   }
 };
 
-std::string quoted(std::string_view s) { return "\"" + std::string(s) + "\""; }
+std::string in_quotes(std::string_view s) { return "\"" + std::string(s) + "\""; }
 
 }  // namespace
 
@@ -192,8 +192,8 @@ Record parse_record_csv(const std::string &bytes, const std::string &path,
         if (k >= 0) {
           if (col[k] >= 0)
             ctx.fail(line_no, std::string("column '") + kNames[k] + "' appears twice in the header (" +
-                                  quoted(header_names[(size_t)col[k]]) + " and " +
-                                  quoted(clean_cell(fields[i])) + ")");
+                                  in_quotes(header_names[(size_t)col[k]]) + " and " +
+                                  in_quotes(clean_cell(fields[i])) + ")");
           col[k] = (int)i;
         }
         header_names.push_back(std::string(clean_cell(fields[i])));
@@ -205,7 +205,7 @@ Record parse_record_csv(const std::string &bytes, const std::string &path,
       for (int k = 0; k < 3; ++k) {
         if (col[k] >= 0 || (k == 2 && !opt.require_force)) continue;
         std::string have;
-        for (const auto &h : header_names) have += (have.empty() ? "" : ", ") + quoted(h);
+        for (const auto &h : header_names) have += (have.empty() ? "" : ", ") + in_quotes(h);
         ctx.fail(line_no, std::string("missing column '") + kNames[k] + "' in header (columns: " +
                               have + ")");
       }
@@ -228,10 +228,10 @@ Record parse_record_csv(const std::string &bytes, const std::string &path,
       const NumStatus s = parse_double(cell, v[k], sep);
       if (s == NumStatus::not_a_number)
         ctx.fail(line_no, std::string("column '") + kNames[k] + "': non-numeric value " +
-                              quoted(clean_cell(cell)));
+                              in_quotes(clean_cell(cell)));
       if (s == NumStatus::out_of_range || !std::isfinite(v[k]))
         ctx.fail(line_no, std::string("column '") + kNames[k] + "': non-finite value " +
-                              quoted(clean_cell(cell)));
+                              in_quotes(clean_cell(cell)));
     }
     if (!rec.t.empty() && !(v[0] > rec.t.back()))
       ctx.fail(line_no, "time is not increasing: " + std::string(clean_cell(fields[(size_t)col[0]])) +

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # ctest_blind.sh RTB OUTDIR CASES -- blind-generator cases through `rtb
 # diagnose`: every case named right, no wrong word. CASES is run_blind.sh's
-# --cases list; tests/CMakeLists.txt splits these into three groups:
+# --cases list; tests/CMakeLists.txt splits these into a fast group (make
+# test: delay,asymmetry:14) and three long ones (make test-long):
 #   none:1                     plain data;
 #   mullins:1, softening:2     cases whose verdicts its effect definitions
 #                              changed (a Mullins loss on the whole material;
