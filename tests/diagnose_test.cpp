@@ -196,6 +196,10 @@ TEST(DiagnoseWhatIf, ImposedWordIsFittedAndReportedNotSelected) {
   ASSERT_EQ(R.causes.size(), 1u) << R.verdict;
   EXPECT_EQ(R.cause, "viscous");
   EXPECT_EQ(R.verdict.rfind("imposed causes", 0), 0u) << R.verdict;
+  // Plain data: neither the held-out nor the fit records show a dashpot, so
+  // the verdict does not claim the word was judged on the fit records.
+  EXPECT_FALSE(R.causes[0].on_fit_records) << R.verdict;
+  EXPECT_EQ(R.verdict.find("judged on the fit records"), std::string::npos) << R.verdict;
   // The first round is the diagnosis's (every word screened); the imposed
   // word was fitted and judged, and not found eligible.
   EXPECT_EQ(R.candidates.size(), candidate_vocabulary().size());

@@ -136,8 +136,11 @@ void accept_one(Current &cur, const CandidateOutcome &best, int round, const Con
   if (!rejected) {
     Cause c = diag::make_cause(accepted, before);
     const double min_gain = round == 0 ? cx.opt.min_gain : cx.opt.min_gain_next;
+    // Judged on the fit records only where they did decide: an imposed
+    // word (what-if) that pays on neither is not said to have been judged.
     c.on_fit_records =
-        !held_out_pays(before.errors(), cur.errors(), cx.selection_scales(), min_gain, cx.opt);
+        !held_out_pays(before.errors(), cur.errors(), cx.selection_scales(), min_gain, cx.opt) &&
+        fit_records_decide(before.errors(), cur.errors(), cx.selection_scales(), cx.opt);
     R.causes.push_back(c);
     R.extended_fit = accepted.fit;
   }
