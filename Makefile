@@ -3,7 +3,7 @@
 #   make test     Release tests + symbol check, then an ASan/UBSan tree in build-asan/
 #                 (the long tier excluded: ctest -LE long)
 #   make test-long  the long tier: end-to-end diagnoses of more than ~25 s
-#                 each (tests/CMakeLists.txt), Release, ~20 min on 2 cores
+#                 each (tests/CMakeLists.txt), Release, ~17 min on 2 cores
 #   make demo     build, then run `build/rtb demo`
 #   make bench    build, then run the Google Benchmark suite (JSON in build/bench.json)
 #   make report   build, then run `build/rtb report`
