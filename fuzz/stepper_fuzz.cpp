@@ -56,6 +56,7 @@ rtb_params make_params(Bytes &in) {
   if ((ext3 & 4) && p.model == RTB_MODEL_RT) p.fric_asym = in.unit() * 1.98 - 0.99;
   if (ext3 & 16) p.k2 = (in.unit() * 2.0 - 1.0) * in.log_uniform(1e-6, 1e4);  // ABI 6
   if (ext3 & 32) p.mullins_whole = 1.0;                                         // ABI 7
+  if (ext3 & 128) p.relax_width = in.log_uniform(1e-6, 1e2);                    // ABI 9
   if ((ext3 & 64) && p.sat_force > 0.0 && p.k_asym == 0.0)  // K0 < 0 under a softening spring
     p.K0 = -in.unit() * (1.0 / (1.0 / p.Kpa + p.cells / p.Kr) + p.sat_force / p.sat_disp);
   if (ext3 & 8) {

@@ -65,7 +65,7 @@ extern "C" {
 /* Types                                                               */
 /* ------------------------------------------------------------------ */
 
-#define RTB_ABI_VERSION 8     /* bumped on any layout change of the structs
+#define RTB_ABI_VERSION 9     /* bumped on any layout change of the structs
                                  (2: `smoothing`, `sat_force`, `sat_disp` took reserved[0..2];
                                   3: slack, backlash_held, fric_asym, spec_* and the
                                   spectrum memory z_spec in rtb_state; fixed-width
@@ -74,10 +74,11 @@ extern "C" {
                                   5: rtb_settings.max_work, the budget at run time;
                                   6: k2, the quadratic spring, took reserved[0];
                                   7: mullins_whole, the Mullins definition, took reserved[0];
-                                  8: mullins_width, the Ogden-Roxburgh shape, took reserved[0]) */
+                                  8: mullins_width, the Ogden-Roxburgh shape, took reserved[0];
+                                  9: relax_width, the stretch-dependent relaxation, took reserved[0]) */
 #define RTB_MAX_CELLS 32      /* capacity of rtb_state; N = 1 .. RTB_MAX_CELLS */
 #define RTB_DEFAULT_CELLS 15  /* the paper's choice (section 3.4) */
-#define RTB_N_RESERVED 3
+#define RTB_N_RESERVED 2
 #define RTB_MAX_BRANCHES 16  /* capacity of the relaxation spectrum (eight decades) */
 
 /* The scalar: double, or float when compiled with -DRTB_SINGLE (for a
@@ -149,8 +150,9 @@ typedef struct rtb_params {
                         sat_disp (rtb_static_force), must be >= 0. K0 < 0 is
                         for a softening spring that takes more than K0 at
                         large strain (the static law may then fall there;
-                        with slack K0 + 1/(1/Kpa + N/Kr) >= 0: a floating end
-                        needs a law that rises again) */
+                        with slack K0 + 1/(1/Kpa + N/Kr) >= 0, and K0 >= 0
+                        with slack and relax_width: a floating end needs a
+                        law that rises again) */
   rtb_real Kpa;      /* low-amplitude stiffness, > 0         [force/length] */
   rtb_real Kr;       /* cell spring stiffness, > 0           [force/length] */
   rtb_real C0;       /* RT dashpot coefficient, > 0  [force (time/length)^alpha] */
@@ -224,6 +226,17 @@ typedef struct rtb_params {
                            the elastic energy ~ xb^2): nearly uniform below
                            the max when w << max. 0 (default): the linear
                            eta = 1 - mu (1 - |xb|/max). >= 0      [length] */
+  /* ABI 9 (issue #10), from reserved[0]. */
+  rtb_real relax_width; /* w > 0: relaxation that weakens with stretch. The
+                           relaxing force (the cell chain Kpa (xb - y1), the
+                           Maxwell branch, the spectrum) is scaled by
+                           g = 1 / sqrt(1 + (xb/w)^2), the equilibrium
+                           spring K0 and the elastic extensions are not: the
+                           relaxed fraction F(inf)/F(0+) of a hold grows with
+                           the stretch (VHB 4910's relaxations). Eq. (2) is
+                           homogeneous in (Kpa, Kr, C0), so the cells move as
+                           without it (STS: as if Kpa, Kr and Ff scaled
+                           alike). 0 (default): off. >= 0         [length] */
   rtb_real reserved[RTB_N_RESERVED];
 } rtb_params;
 
@@ -293,7 +306,8 @@ typedef struct rtb_params {
   X(spec_tau_max, NONNEG, SETTING, "time", "relaxation spectrum slowest time")   \
   X(k2, ANY, FIT, "force/length^2", "quadratic spring (asymmetry)")                 \
   X(mullins_whole, FLAG, SETTING, "-", "Mullins softening of the whole RT force (1) or of K0 (0)") \
-  X(mullins_width, NONNEG, FIT, "length", "Mullins erf width w (Ogden-Roxburgh), 0 = linear loss")
+  X(mullins_width, NONNEG, FIT, "length", "Mullins erf width w (Ogden-Roxburgh), 0 = linear loss") \
+  X(relax_width, NONNEG, FIT, "length", "stretch width w of the relaxing force's factor 1/sqrt(1+(xb/w)^2), 0 = off")
 
 /* Numerical settings of the implicit solve. NULL means rtb_settings_default. */
 typedef struct rtb_settings {

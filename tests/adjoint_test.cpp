@@ -136,6 +136,29 @@ TEST_P(AdjointIntegrators, ErfShapedMullinsOnK0AndOnTheWholeForce) {
   expect_exact(p, recs);
 }
 
+// Relaxation weakening with stretch (ABI 9): the relaxing force (chain,
+// Maxwell branch, spectrum) scaled by g(xb) = 1/sqrt(1 + (xb/w)^2), w fitted;
+// with the whole-force Mullins factor on top, and on a slack strip (the free
+// phase's implicit xb goes through g too).
+TEST_P(AdjointIntegrators, StretchDependentRelaxation) {
+  rtb_params p = table1_point(truth);
+  p.relax_width = 0.4;  // mm, within the 1 mm records
+  p.maxwell_k = 150;
+  p.maxwell_tau = 0.05;
+  p.spec_k = 200;
+  p.spec_exp = 0.3;
+  p.spec_tau_min = 0.005;
+  p.spec_tau_max = 1.0;
+  expect_exact(p, recs);
+  p.mullins = 0.2;
+  p.mullins_whole = 1;
+  expect_exact(p, recs);
+  p.mullins = 0.0;
+  p.mullins_whole = 0;
+  p.slack = 1;
+  expect_exact(p, recs);
+}
+
 INSTANTIATE_TEST_SUITE_P(Both, AdjointIntegrators,
                          ::testing::Values((int)RTB_INTEGRATOR_SDIRK2, (int)RTB_INTEGRATOR_BE));
 

@@ -1,7 +1,8 @@
 // cause_revision_test.cpp -- stages 5c-5d of the diagnosis (cause_revision.cpp):
 // an accepted cause whose gain was not its own is no cause (not_a_cause);
 // an earlier cause that a later one made redundant is dropped, one that
-// still pays is kept. Records of the own generator (synthetic_records.h), 4 s,
+// still pays is kept; a degressive cubic that is a softening spring is
+// renamed (cubic_to_softening). Records of the own generator (synthetic_records.h), 4 s,
 // 0.5% noise; the model with both causes is fitted jointly first, as the
 // pipeline does, so the test sees the decision and not a start that fits
 // badly.

@@ -10,6 +10,7 @@
 
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -212,6 +213,28 @@ TEST(DiagnoseWhatIf, ImposedWordIsFittedAndReportedNotSelected) {
     EXPECT_FALSE(co.why.empty());
   }
   EXPECT_EQ(fitted, 1);  // (without the imposition plain data give `none`: Seed5 "none")
+}
+
+// A record's length is part of its input: the spectrum's slowest branch
+// reaches the longest record the model is run on, held-out ones too (VHB
+// 4910's 1800 s holds against 400 s fit records), not only the fit ones.
+TEST(DiagnoseWhatIf, SpectrumMemoryReachesTheLongestHeldOutRecord) {
+  Scenario sc = hidden_effect_scenario("relaxation_spectrum", kSeed, 0.005, 3.0);
+  for (Record &r : sc.fit) {  // fit records of 1.5 s, held-out ones of 3 s
+    const size_t n = r.t.size() / 2;
+    r.t.resize(n), r.x.resize(n), r.F.resize(n);
+  }
+  double fit_len = 0.0, hold_len = 0.0;
+  for (const Record &r : sc.fit) fit_len = std::max(fit_len, r.t.back() - r.t.front());
+  for (const Record &r : sc.holdout) hold_len = std::max(hold_len, r.t.back() - r.t.front());
+  ASSERT_GT(hold_len, 1.5 * fit_len);
+  DiagnoseOptions o;
+  o.quiet = true;
+  o.imposed = {"relaxation_spectrum"};
+  const DiagnoseResult R = diagnose(sc.fit, sc.holdout, o);
+  ASSERT_EQ(R.causes.size(), 1u) << R.verdict;
+  EXPECT_NEAR(R.extended_fit.model.p.spec_tau_max, hold_len, 1e-9 * hold_len);
+  EXPECT_GT(R.extended_fit.model.p.spec_tau_min, 0.0);
 }
 #endif
 

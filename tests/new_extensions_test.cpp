@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <vector>
 
 #include "rt_bushing.h"
@@ -229,6 +230,59 @@ TEST(SofteningPastK0, HoldRelaxesToTheStaticLawAndSlackStaysFinite) {
   EXPECT_EQ(rtb_params_check(&p, &field), RTB_OK) << field;
 }
 
+// Relaxation weakening with stretch (ABI 9). Eq. (2) is homogeneous in
+// (Kpa, Kr, C0) and the branches follow xb alone, so along ANY history the
+// element with relax_width w gives F_w = K0 x + g(x) (F_0 - K0 x), F_0 the
+// element without it, g = 1/sqrt(1 + (x/w)^2). A hold then relaxes to the
+// static law K0 x + chain x g(x), and the relaxed fraction F(inf)/F(0+) of a
+// fast ramp-and-hold grows with the stretch (VHB 4910's relaxations).
+TEST(StretchRelaxation, RelaxingForceScaledAlongAnyHistory) {
+  rtb_params p = rt_default();
+  p.K0 = 150.0;
+  p.alpha = 0.6;  // relaxes within the hold
+  p.maxwell_k = 200.0;
+  p.maxwell_tau = 0.05;
+  p.spec_k = 300.0;
+  p.spec_exp = 0.3;
+  p.spec_tau_min = 0.002;
+  p.spec_tau_max = 2.0;
+  rtb_params q = p;
+  q.relax_width = 0.4;
+  ASSERT_EQ(rtb_params_validate(&q), RTB_OK);
+  const double dt = 1e-3;
+  auto g = [&](double x) { return 1.0 / std::sqrt(1.0 + (x / q.relax_width) * (x / q.relax_width)); };
+  std::vector<double> x;
+  for (int i = 0; i <= 4000; ++i) x.push_back(1.2 * std::sin(2 * M_PI * 1.5 * i * dt) * (0.3 + 0.7 * i / 4000.0));
+  const std::vector<double> F0 = run(p, x, dt), F1 = run(q, x, dt);
+  for (size_t i = 1; i < x.size(); i += 37) {
+    const double expect = p.K0 * x[i] + g(x[i]) * (F0[i] - p.K0 * x[i]);
+    ASSERT_NEAR(F1[i], expect, 1e-9 * (std::fabs(F0[i]) + 1.0)) << "step " << i;
+  }
+  // Ramp in 10 ms and hold 40 s (a near-linear dashpot, so the hold relaxes
+  // within it): the static law, and a relaxed fraction that grows with the
+  // stretch much more than without relax_width.
+  p.alpha = q.alpha = 0.95;
+  const double chain = 1.0 / (1.0 / p.Kpa + p.cells / p.Kr);
+  double frac_w[2], frac_0[2];
+  const double amps[2] = {0.2, 1.6};
+  for (int k = 0; k < 2; ++k) {
+    const double x0 = amps[k];
+    std::vector<double> h;
+    for (int i = 0; i <= 10; ++i) h.push_back(x0 * i / 10.0);
+    h.resize(h.size() + 40000, x0);
+    const std::vector<double> H0 = run(p, h, dt), H1 = run(q, h, dt);
+    const double closed = p.K0 * x0 + chain * x0 * g(x0);
+    EXPECT_NEAR(rtb_static_force(&q, x0), closed, 1e-12 * closed);
+    EXPECT_NEAR(H1.back(), closed, 2e-3 * closed);
+    frac_w[k] = H1.back() / H1[10];
+    frac_0[k] = H0.back() / H0[10];
+  }
+  std::printf("relaxed fraction at x0 = 0.2, 1.6 mm: %.4f %.4f (w = 0: %.4f %.4f)\n", frac_w[0],
+              frac_w[1], frac_0[0], frac_0[1]);
+  EXPECT_NEAR(frac_0[1], frac_0[0], 0.05 * frac_0[0]);  // near-linear: about the same
+  EXPECT_GT(frac_w[1], 1.5 * frac_w[0]);
+}
+
 TEST(NewExtensions, ValidationNamesTheField) {
   rtb_params p = rt_default();
   const char *field = nullptr;
@@ -251,6 +305,19 @@ TEST(NewExtensions, ValidationNamesTheField) {
   p.Kpa = -1;
   EXPECT_EQ(rtb_params_check(&p, &field), RTB_ERR_PARAM_RANGE);
   EXPECT_STREQ(field, "Kpa");
+  p = rt_default();
+  p.relax_width = -1.0;
+  EXPECT_EQ(rtb_params_check(&p, &field), RTB_ERR_PARAM_RANGE);
+  EXPECT_STREQ(field, "relax_width");
+  // a slack strip with a bounded relaxing force needs K0 >= 0 (a law that rises again)
+  p = rt_default();
+  p.relax_width = 1.0;
+  p.slack = 1;
+  p.K0 = -1.0;
+  EXPECT_EQ(rtb_params_check(&p, &field), RTB_ERR_PARAM_RANGE);
+  EXPECT_STREQ(field, "K0");
+  p.slack = 0;
+  EXPECT_EQ(rtb_params_check(&p, &field), RTB_OK) << field;
   p = rt_default();
   EXPECT_EQ(rtb_params_check(&p, &field), RTB_OK);
   EXPECT_STREQ(field, "");

@@ -103,6 +103,22 @@ TEST(TangentExtensions, Mullins) {
   }
 }
 
+// Relaxation weakening with stretch (ABI 9): g(xb) and its slope enter the
+// tangent with the chain's and the branches' own dependence on xb; smooth.
+TEST(TangentExtensions, StretchDependentRelaxation) {
+  rtb_params p = paper();
+  p.relax_width = 0.5;
+  p.maxwell_k = 200;
+  p.maxwell_tau = 0.02;
+  p.spec_k = 300;
+  p.spec_exp = 0.2;
+  p.spec_tau_min = 0.002;
+  p.spec_tau_max = 2.0;
+  const Tally t = check_tangent(p, 1.0, 3.0);
+  EXPECT_GE(t.checked, 80);
+  EXPECT_LE(t.kinks, 2);
+}
+
 TEST(TangentExtensions, WholeForceMullins) {
   for (int model : {RTB_MODEL_RT, RTB_MODEL_STS}) {
     rtb_params p;

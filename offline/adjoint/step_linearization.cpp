@@ -137,6 +137,7 @@ ForceLin force_lin(const StepView &v, const rtb_spectrum &sp, bool with_inertia)
   L.g[P_sat_disp] = f.d_sat_disp;
   L.g[P_spec_k] = f.d_spec_k;
   L.g[P_spec_exp] = f.d_spec_exp;
+  L.g[P_relax_width] = f.d_relax_width;
   if (with_inertia) L.g[P_mass] = (v.vx_new - v.vx_old) / v.dt;
   return L;
 }
@@ -214,26 +215,23 @@ void chain_vjp(const StepView &v, const Branches &br, const StateDual &bn, State
   *xbbar = dxb_bar;
 }
 
-// dF/d(memory): y1 -> L.f.d_y1 (-Kpa, or -eta Kpa with mullins_whole),
-// z -> -maxwell_k, z_j -> -spec_k w_j.
+// dF/d(memory), bushing_force.h's: y1 -> d_y1, z -> d_z, z_j -> d_z_spec w_j.
 double force_jvp(const StepView &v, const Branches &br, const StateDual &d, const StateDual &dn,
                  const double *dp, bool with_inertia) {
-  const rtb_params &p = *v.p;
   const ForceLin L = force_lin(v, br.sp, with_inertia);
-  double dF = L.f.d_y1 * dn.y[0] - p.maxwell_k * dn.z + L.f.d_xb * dn.xb + L.f.d_xb_old * d.xb +
+  double dF = L.f.d_y1 * dn.y[0] + L.f.d_z * dn.z + L.f.d_xb * dn.xb + L.f.d_xb_old * d.xb +
               L.f.d_xbmax * d.m;
-  for (int j = 0; j < br.sp.M; ++j) dF -= p.spec_k * br.sp.w[j] * dn.zs[j];
+  for (int j = 0; j < br.sp.M; ++j) dF += L.f.d_z_spec * br.sp.w[j] * dn.zs[j];
   for (int i = 0; i < P_COUNT; ++i) dF += L.g[i] * dp[i];
   return dF;
 }
 
 void force_vjp(const StepView &v, const Branches &br, double Fbar, StateDual &bo, StateDual &bn,
                double *pbar, bool with_inertia) {
-  const rtb_params &p = *v.p;
   const ForceLin L = force_lin(v, br.sp, with_inertia);
   bn.y[0] += L.f.d_y1 * Fbar;
-  bn.z -= p.maxwell_k * Fbar;
-  for (int j = 0; j < br.sp.M; ++j) bn.zs[j] -= p.spec_k * br.sp.w[j] * Fbar;
+  bn.z += L.f.d_z * Fbar;
+  for (int j = 0; j < br.sp.M; ++j) bn.zs[j] += L.f.d_z_spec * br.sp.w[j] * Fbar;
   bn.xb += L.f.d_xb * Fbar;
   bo.xb += L.f.d_xb_old * Fbar;
   bo.m += L.f.d_xbmax * Fbar;

@@ -43,10 +43,10 @@ int run_diagnose(int argc, char **argv) {
       "Fit the RT model, estimate the noise floor from the data, try every extension\n"
       "of the vocabulary (cubic_stiffness, asymmetry, maxwell, viscous, backlash\n"
       "(floating or held end), mullins, delay, inertia, offset, softening, slack,\n"
-      "relaxation_spectrum, friction_asymmetry) and name the causes that explain the\n"
-      "held-out records, one after another while the next still pays; `none` when\n"
-      "the residual is at the noise floor, `unexplained` (with the residual's\n"
-      "signature) when it is above it and no candidate removes it.",
+      "relaxation_spectrum, friction_asymmetry, stretch_relaxation) and name the causes\n"
+      "that explain the held-out records, one after another while the next still\n"
+      "pays; `none` when the residual is at the noise floor, `unexplained` (with the\n"
+      "residual's signature) when it is above it and no candidate removes it.",
       {
           {"data", "FILE", "fit record CSV; repeat for several", true, true},
           {"holdout", "FILE", "held-out record CSV; repeat for several", false, true},

@@ -40,12 +40,13 @@ DataScales data_scales(const std::vector<Record> &recs) {
   s.Ksec = s.Fmax / s.Xmax;
   s.dt = ndt ? dts / ndt : 1e-3;
   s.duration = pos(s.duration);
+  s.memory = s.duration;
   return s;
 }
 
 void set_spectrum_range(rtb_params &p, const DataScales &s, double tau_min) {
   p.spec_tau_min = tau_min;
-  p.spec_tau_max = std::max(p.spec_tau_min, s.duration);
+  p.spec_tau_max = std::max(p.spec_tau_min, s.memory);
   const double cap = p.spec_tau_min * std::pow(10.0, (RTB_MAX_BRANCHES - 1) / 2.0);
   p.spec_tau_max = std::min(p.spec_tau_max, cap);
 }
@@ -69,6 +70,7 @@ void spectrum_fastest_branch(rtb_params &p, const DataScales &s, double g) {
 }
 void backlash_of_stroke(rtb_params &p, const DataScales &s, double g) { p.backlash = g * s.Xmax; }
 void mullins_fraction(rtb_params &p, const DataScales &, double g) { p.mullins = g; }
+void relax_width_of_stroke(rtb_params &p, const DataScales &s, double g) { p.relax_width = g * s.Xmax; }
 // Ogden-Roxburgh's erf shape on the whole RT force, its width a third of the
 // stroke: a loss that is nearly uniform below the prior max (blindgen
 // mullins_s3: erf over 8% of the peak energy, w = 0.28 X).
@@ -157,8 +159,19 @@ const std::vector<Candidate> &candidate_vocabulary() {
       shape_scanned(word("relaxation_spectrum", {P_spec_k, P_spec_exp}, set_spectrum),
                     spectrum_passes()),
       word("friction_asymmetry", {P_fric_asym}),
+      short_fitted(word("stretch_relaxation", {P_relax_width}), relax_width_of_stroke, {0.5, 2.0}),
   };
   return v;
+}
+
+// A relaxation that weakens with stretch refines a relaxation the records
+// already showed (a Maxwell branch or a spectrum): on its own its factor
+// g(x) on the RT chain is a dynamic softening, which `softening` names.
+std::string needs_other_cause(const Candidate &c, const std::vector<Candidate> &causes) {
+  if (c.name != "stretch_relaxation") return "";
+  for (const Candidate &k : causes)
+    if (k.name == "maxwell" || k.name == "relaxation_spectrum") return "";
+  return "refines a relaxation: needs maxwell or relaxation_spectrum among the causes";
 }
 
 bool candidates_conflict(const Candidate &a, const Candidate &b) {
@@ -291,6 +304,9 @@ std::string describe_effect(const Candidate &c, const ExtModel &m) {
   else if (c.name == "relaxation_spectrum")
     std::snprintf(b, sizeof b, "relaxation spectrum k = %.4g, exponent %.3g over %.3g..%.3g s",
                   p.spec_k, p.spec_exp, p.spec_tau_min, p.spec_tau_max);
+  else if (c.name == "stretch_relaxation")
+    std::snprintf(b, sizeof b, "relaxation weakening with stretch: relaxing force x 1/sqrt(1 + (x/%.4g)^2)",
+                  p.relax_width);
   else if (c.name == "friction_asymmetry")
     std::snprintf(b, sizeof b, "friction asymmetry a = %.3g (dashpot level x%.3g for + motion, x%.3g for -)",
                   p.fric_asym, 1 + p.fric_asym, 1 - p.fric_asym);

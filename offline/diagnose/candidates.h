@@ -14,6 +14,10 @@ namespace rtb {
 struct DataScales {
   double Fmax = 1, Xmax = 1, Vmax = 1, Amax = 1, Ksec = 1;
   double dt = 1e-3, duration = 1;
+  // The longest record the model is run on, fit or held out [time]: the
+  // relaxation spectrum's slowest branch (set_spectrum_range). = duration
+  // from data_scales; the diagnosis widens it to its held-out records.
+  double memory = 1;
 };
 DataScales data_scales(const std::vector<Record> &recs);
 
@@ -56,14 +60,20 @@ struct Candidate {
 };
 
 // The relaxation spectrum's branch range: from tau_min [time] to the longest
-// record, at most RTB_MAX_BRANCHES branches two per decade.
+// record (DataScales::memory), at most RTB_MAX_BRANCHES branches two per
+// decade.
 void set_spectrum_range(rtb_params &p, const DataScales &s, double tau_min);
 
 // cubic_stiffness, asymmetry, maxwell, viscous, backlash (floating and held
 // end), mullins, delay, inertia, offset, softening, slack,
-// relaxation_spectrum, friction_asymmetry ("none" is the absence of all of
-// them, "unexplained" a residual above the noise floor none of them removes).
+// relaxation_spectrum, friction_asymmetry, stretch_relaxation ("none" is the
+// absence of all of them, "unexplained" a residual above the noise floor none
+// of them removes).
 const std::vector<Candidate> &candidate_vocabulary();
+
+// Why candidate c cannot come yet, given the causes so far ("" if it can):
+// stretch_relaxation refines a maxwell branch or a relaxation_spectrum.
+std::string needs_other_cause(const Candidate &c, const std::vector<Candidate> &causes);
 
 // Two candidates that cannot be in one model (slack floats free; a held
 // clearance holds), or are the same word.

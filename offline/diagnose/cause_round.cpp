@@ -370,7 +370,8 @@ std::vector<CandidateOutcome> one_round(const Current &cur, const Context &cx, i
     bool clash = false;
     for (const Candidate &k : cur.causes) clash = clash || candidates_conflict(c, k);
     if (clash) continue;
-    const std::string why = excluded_by_data(c, cx.all);
+    std::string why = excluded_by_data(c, cx.all);
+    if (why.empty()) why = needs_other_cause(c, cur.causes);
     if (why.empty()) {
       cands.push_back(c);
       continue;

@@ -123,6 +123,10 @@ double amplitude_z(const Candidate &c, const ExtFitResult &f);
 // Stage 5d: a relaxation spectrum refitted onto its fastest branch becomes
 // that branch's word (`viscous` or `maxwell`); the index replaced, or -1.
 int spectrum_to_one_branch(Current &cur, const Context &cx, DiagnoseResult &R);
+// Stage 5d: a degressive cubic accepted before a later cause, refitted as a
+// softening spring with the later causes, is replaced by it when the spring
+// saturates within the stroke and is no worse; the index replaced, or -1.
+int cubic_to_softening(Current &cur, const Context &cx, DiagnoseResult &R);
 // The share of a relaxation spectrum's stiffness on its fastest branch.
 double fastest_branch_share(const rtb_params &p);
 // Whether fit b of one definition of a word is preferred to fit a of the

@@ -170,6 +170,7 @@ CandidateScreen screen_one(const Candidate &c, int variant, const ExtModel &m,
   if (c.screen == ScreenMethod::shape_scan) return scan_shape(c, m0, base, recs, opt, sc);
   if (c.screen == ScreenMethod::short_fit) {
     if (c.start_at) c.start_at(m0.p, sc, c.starts[(size_t)variant]);
+    admit_K0(m0.p);  // K0 < 0 is refused on a slack strip with relax_width
     return short_fit(c, m0, spec, base, recs, opt, sc);
   }
 

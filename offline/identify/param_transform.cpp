@@ -54,6 +54,7 @@ K0Floor k0_floor(const rtb_params &p) {
   f.d_Kr = -kShare * c * c * p.cells / (p.Kr * p.Kr);
   f.d_sat_force = sat > 0.0 ? -kShare / p.sat_disp : 0.0;
   f.d_sat_disp = sat > 0.0 ? kShare * sat / p.sat_disp : 0.0;
+  if (p.slack != 0.0 && p.relax_width > 0.0) f = K0Floor{0.0, 0.0, 0.0, 0.0, 0.0};  // K0 >= 0
   return f;
 }
 bool contains(const std::vector<ParamId> &v, ParamId id) {
@@ -69,7 +70,7 @@ double logistic(double t) { return 1.0 / (1.0 + std::exp(-t)); }
 }  // namespace
 
 void admit_K0(rtb_params &p) {
-  if (!(p.sat_force > 0.0)) p.K0 = std::max(p.K0, 0.0);
+  if (!(p.sat_force > 0.0) || (p.slack != 0.0 && p.relax_width > 0.0)) p.K0 = std::max(p.K0, 0.0);
 }
 
 bool is_ramp(ParamId id) { return kind_of(id, 0.0) == Kind::Ramp; }

@@ -68,9 +68,10 @@ struct ParamTransform {
   double lower_of(ParamId id) const;  // lower end of a Ramp parameter's box
 };
 
-// K0 < 0 is admissible only next to a softening spring (rtb_params_check);
-// a model without one (a cause switched off, a baseline restarted from a
-// candidate's basin) takes K0 back to 0.
+// K0 < 0 is admissible only next to a softening spring, and not on a slack
+// strip with relax_width (rtb_params_check); a model without one (a cause
+// switched off, a baseline restarted from a candidate's basin) takes K0 back
+// to 0.
 void admit_K0(rtb_params &p);
 
 // Optimized linearly in a box with 0 as its lower bound (see above).

@@ -10,6 +10,8 @@
  *     + sat_force tanh(xb/sat_disp)
  *     + maxwell_k (xb - z) + sum_j k_j (xb - z_j)            Maxwell branch, spectrum
  *     + viscous_c (xb - xb_old)/dt                           linear dashpot
+ * with relax_width w > 0 the relaxing force (Kpa, Maxwell and spectrum terms)
+ * is scaled by g(xb) = 1/sqrt(1 + (xb/w)^2): relaxation weakening with stretch.
  * (the inertia term m a acts on the input x and is added by the step).
  */
 #ifndef RTB_BUSHING_FORCE_H
@@ -89,15 +91,34 @@ static inline void rtb_spectrum_layout(const rtb_params *p, rtb_spectrum *sp) {
 /* ------------------------------------------------------------------ */
 typedef struct rtb_force_lin {
   rtb_real F;          /* force without inertia */
-  rtb_real d_xb;       /* dF/dxb_new at fixed y1, z, z_j (dF/dz = -maxwell_k,
-                        dF/dz_j = -spec_k w_j) */
-  rtb_real d_y1;       /* dF/dy1: -Kpa, or -eta Kpa with mullins_whole */
+  rtb_real d_xb;       /* dF/dxb_new at fixed y1, z, z_j */
+  rtb_real d_y1;       /* dF/dy1: -g Kpa, or -eta g Kpa with mullins_whole */
+  rtb_real d_z;        /* dF/dz: -g maxwell_k */
+  rtb_real d_z_spec;   /* dF/dz_j = d_z_spec w_j: -g spec_k */
   rtb_real d_xb_old;   /* through the linear dashpot */
   rtb_real d_xbmax;    /* through the Mullins memory (prior max |xb|) */
   /* dF/d(parameter) */
   rtb_real d_K0, d_Kpa, d_k2, d_k3, d_k_asym, d_maxwell_k, d_viscous_c, d_mullins;
-  rtb_real d_sat_force, d_sat_disp, d_spec_k, d_spec_exp, d_mullins_width;
+  rtb_real d_sat_force, d_sat_disp, d_spec_k, d_spec_exp, d_mullins_width, d_relax_width;
 } rtb_force_lin;
+
+/* Stretch factor of the relaxing force, g = (1 + u^2)^(-1/2), u = xb/w, and
+ * its partials (g = 1 when w = 0: off). */
+typedef struct rtb_relax_lin {
+  rtb_real g, d_xb, d_w;
+} rtb_relax_lin;
+
+static inline rtb_relax_lin rtb_relax_eval(const rtb_params *p, rtb_real xb) {
+  rtb_relax_lin r = {1.0, 0.0, 0.0};
+  const rtb_real w = p->relax_width;
+  if (!(w > 0.0)) return r;
+  const rtb_real u = xb / w;
+  r.g = 1.0 / sqrt(1.0 + u * u);
+  const rtb_real g3 = r.g * r.g * r.g;
+  r.d_xb = -g3 * u / w;
+  r.d_w = g3 * u * u / w;
+  return r;
+}
 
 /* Mullins factor eta below the prior max m and its partials. */
 typedef struct rtb_mullins_lin {
@@ -134,13 +155,14 @@ static inline void rtb_force_eval(const rtb_params *p, rtb_real xb, rtb_real xb_
   const rtb_real ax = fabs(xb);
   const rtb_real sgn = xb > 0.0 ? 1.0 : (xb < 0.0 ? -1.0 : 0.0);
   /* Mullins factor eta below the prior max, on K0 xb or on the whole RT
-   * force S = K0 xb + Kpa (xb - y1) (mullins_whole). */
+   * force S = K0 xb + g Kpa (xb - y1) (mullins_whole). */
   const rtb_mullins_lin mu = rtb_mullins_eval(p, xb, xbmax_old);
   const rtb_real eta = mu.eta;
   const int whole = p->mullins_whole != 0.0;
   const rtb_real chain = xb - y1;
-  const rtb_real S = whole ? p->K0 * xb + p->Kpa * chain : p->K0 * xb; /* what eta scales */
   const rtb_real eta_pa = whole ? eta : 1.0;                             /* ... on Kpa */
+  const rtb_relax_lin g = rtb_relax_eval(p, xb);
+  const rtb_real S = whole ? p->K0 * xb + g.g * p->Kpa * chain : p->K0 * xb; /* what eta scales */
   /* Softening spring Fs tanh(xb/xs); sech^2 = 1 - tanh^2. */
   const rtb_real xs = p->sat_disp;
   const rtb_real th = xs > 0.0 ? tanh(xb / xs) : 0.0, sech2 = 1.0 - th * th;
@@ -151,29 +173,33 @@ static inline void rtb_force_eval(const rtb_params *p, rtb_real xb, rtb_real xb_
     dFsp_dbeta += sp->dw_dbeta[j] * (xb - z_spec[j]);
   }
   const rtb_real v = (xb - xb_old) / dt;
+  /* The relaxing force before its stretch factor g. */
+  const rtb_real R = eta_pa * p->Kpa * chain + p->maxwell_k * (xb - z) + p->spec_k * Fsp;
 
-  L->F = p->K0 * eta * xb + eta_pa * p->Kpa * chain + p->k2 * xb * xb + p->k3 * xb * xb * xb +
-         p->k_asym * ax + p->sat_force * th + p->maxwell_k * (xb - z) + p->spec_k * Fsp +
-         p->viscous_c * v;
-  L->d_xb = eta * p->K0 + eta_pa * p->Kpa + S * mu.d_xb + 2.0 * p->k2 * xb + 3.0 * p->k3 * xb * xb +
-            p->k_asym * sgn + (xs > 0.0 ? p->sat_force / xs * sech2 : 0.0) + p->maxwell_k +
-            (sp->M > 0 ? p->spec_k : 0.0) + p->viscous_c / dt;
-  L->d_y1 = -eta_pa * p->Kpa;
+  L->F = p->K0 * eta * xb + g.g * R + p->k2 * xb * xb + p->k3 * xb * xb * xb + p->k_asym * ax +
+         p->sat_force * th + p->viscous_c * v;
+  L->d_xb = eta * p->K0 + g.g * (eta_pa * p->Kpa + p->maxwell_k + (sp->M > 0 ? p->spec_k : 0.0)) +
+            g.d_xb * R + S * mu.d_xb + 2.0 * p->k2 * xb + 3.0 * p->k3 * xb * xb + p->k_asym * sgn +
+            (xs > 0.0 ? p->sat_force / xs * sech2 : 0.0) + p->viscous_c / dt;
+  L->d_y1 = -g.g * eta_pa * p->Kpa;
+  L->d_z = -g.g * p->maxwell_k;
+  L->d_z_spec = -g.g * p->spec_k;
   L->d_xb_old = -p->viscous_c / dt;
   L->d_xbmax = S * mu.d_m;
   L->d_K0 = eta * xb;
-  L->d_Kpa = eta_pa * chain;
+  L->d_Kpa = g.g * eta_pa * chain;
   L->d_k2 = xb * xb;
   L->d_k3 = xb * xb * xb;
   L->d_k_asym = ax;
-  L->d_maxwell_k = xb - z;
+  L->d_maxwell_k = g.g * (xb - z);
   L->d_viscous_c = v;
   L->d_mullins = S * mu.d_mu;
   L->d_mullins_width = S * mu.d_w;
   L->d_sat_force = th;
   L->d_sat_disp = xs > 0.0 ? -p->sat_force * sech2 * xb / (xs * xs) : 0.0;
-  L->d_spec_k = Fsp;
-  L->d_spec_exp = p->spec_k * dFsp_dbeta;
+  L->d_spec_k = g.g * Fsp;
+  L->d_spec_exp = g.g * p->spec_k * dFsp_dbeta;
+  L->d_relax_width = g.d_w * R;
 }
 
 #endif

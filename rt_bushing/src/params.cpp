@@ -70,6 +70,8 @@ static rtb_status check_pairs(const rtb_params *p, const char **field) {
   struct { int bad; const char *name; } rules[] = {
       {!(p->K0 + chain + sat >= 0.0), "K0"},                     /* K0 >= -(chain + sat) */
       {fabs(p->k_asym) > (p->K0 > 0.0 ? p->K0 : 0.0), "k_asym"}, /* |k_asym| <= max(K0, 0) */
+      /* a slack end floating with a bounded relaxing force g R needs a law that still grows */
+      {p->slack != 0.0 && p->relax_width > 0.0 && p->K0 < 0.0, "K0"},
       {p->maxwell_k > 0.0 && !(p->maxwell_tau > 0.0), "maxwell_tau"},
       {p->sat_force > 0.0 && !(p->sat_disp > 0.0), "sat_disp"},
       {(p->spec_k > 0.0 || p->spec_tau_max > 0.0) && !(p->spec_tau_min > 0.0), "spec_tau_min"},
@@ -173,7 +175,9 @@ extern "C" rtb_real rtb_static_force(const rtb_params *p, rtb_real x) {
   /* All dashpots relaxed: the chain parallel to K0. */
   const rtb_real chain = chain_static(p);
   const rtb_real sat = p->sat_disp > 0.0 ? p->sat_force * tanh(x / p->sat_disp) : 0.0;
-  return p->K0 * x + chain * x + p->k2 * x * x + p->k3 * x * x * x + p->k_asym * fabs(x) + sat;
+  const rtb_real u = p->relax_width > 0.0 ? x / p->relax_width : 0.0;
+  return p->K0 * x + chain * x / sqrt(1.0 + u * u) + p->k2 * x * x + p->k3 * x * x * x +
+         p->k_asym * fabs(x) + sat;
 }
 
 extern "C" int rtb_cell_states(const rtb_state *s, rtb_real *out, int cap) {

@@ -167,7 +167,7 @@ void respond(const rtb_state *s, const rtb_params *p, const rtb_settings *set,
   cost->add(*r);
   /* Branch memories; z evolves whenever its tau is set, so dF/dk is exact at k = 0. */
   rtb_maxwell_lin m;
-  rtb_real dz = 0.0, dF_branches = 0.0;
+  rtb_real dz = 0.0, dzw_spec = 0.0; /* d z/dxb, sum_j w_j d z_j/dxb */
   r->z = s->z_maxwell;
   if (p->maxwell_tau > 0.0) {
     rtb_maxwell_step(p->maxwell_tau, dt, s->xb, xb, s->z_maxwell, &m);
@@ -177,13 +177,13 @@ void respond(const rtb_state *s, const rtb_params *p, const rtb_settings *set,
   for (int j = 0; j < sp->M; ++j) {
     rtb_maxwell_step(sp->tau[j], dt, s->xb, xb, s->z_spec[j], &m);
     r->z_spec[j] = m.z;
-    dF_branches += p->spec_k * sp->w[j] * m.d_xb_new;
+    dzw_spec += sp->w[j] * m.d_xb_new;
   }
   rtb_force_lin L;
   rtb_force_eval(p, xb, s->xb, s->xb_max, r->y[0], r->z, r->z_spec, sp, dt, &L);
   r->F = L.F;
   /* L.d_xb holds y1 and the memories fixed; add their own dependence on xb. */
-  r->dF = L.d_xb + L.d_y1 * dy1 - p->maxwell_k * dz - dF_branches;
+  r->dF = L.d_xb + L.d_y1 * dy1 + L.d_z * dz + L.d_z_spec * dzw_spec;
 }
 
 /* Where the bushing end may be: xb in [lo, hi] (hi = +inf for a slack
