@@ -445,7 +445,8 @@ typedef struct rtb_info {
 RTB_API void rtb_get_info(rtb_info *info);
 
 /* Static force for a displacement held forever: every dashpot has relaxed,
- * F = K0 x + x / (1/Kpa + N/Kr) (+ elastic extensions). RT only. */
+ * F = K0 x + g(x) x / (1/Kpa + N/Kr) (+ elastic extensions), g(x) =
+ * 1/sqrt(1 + (x/relax_width)^2) (1 when relax_width = 0). RT only. */
 RTB_API rtb_real rtb_static_force(const rtb_params *p, rtb_real x);
 
 /* ================================================================== */
