@@ -31,6 +31,14 @@ rtb_params table1_point(const rtb_params &truth) {
   return p;
 }
 
+// A relaxation spectrum of stiffness k and weight exponent beta over [t0, t1].
+void set_spectrum(rtb_params &p, double k, double beta, double t0, double t1) {
+  p.spec_k = k;
+  p.spec_exp = beta;
+  p.spec_tau_min = t0;
+  p.spec_tau_max = t1;
+}
+
 void expect_exact(const rtb_params &p, const std::vector<Record> &recs) {
   const GradcheckResult g = gradcheck(p, recs, MisfitOptions());
   ASSERT_FALSE(g.rows.empty());
@@ -92,10 +100,7 @@ TEST_P(AdjointIntegrators, HeldClearanceAsymmetryAndSpectrum) {
   p.backlash = 0.0517;
   p.backlash_held = 1;
   p.fric_asym = 0.3;
-  p.spec_k = 300;
-  p.spec_exp = 0.4;
-  p.spec_tau_min = 0.002;
-  p.spec_tau_max = 2.0;
+  set_spectrum(p, 300, 0.4, 0.002, 2.0);
   expect_exact(p, recs);
 }
 
@@ -106,10 +111,7 @@ TEST_P(AdjointIntegrators, SlackSpecimen) {
   p.slack = 1;
   p.maxwell_k = 100;
   p.maxwell_tau = 0.1;
-  p.spec_k = 200;
-  p.spec_exp = -0.2;
-  p.spec_tau_min = 0.01;
-  p.spec_tau_max = 1.0;
+  set_spectrum(p, 200, -0.2, 0.01, 1.0);
   expect_exact(p, recs);
 }
 
@@ -145,10 +147,7 @@ TEST_P(AdjointIntegrators, StretchDependentRelaxation) {
   p.relax_width = 0.4;  // mm, within the 1 mm records
   p.maxwell_k = 150;
   p.maxwell_tau = 0.05;
-  p.spec_k = 200;
-  p.spec_exp = 0.3;
-  p.spec_tau_min = 0.005;
-  p.spec_tau_max = 1.0;
+  set_spectrum(p, 200, 0.3, 0.005, 1.0);
   expect_exact(p, recs);
   p.mullins = 0.2;
   p.mullins_whole = 1;

@@ -248,7 +248,7 @@ DiagnoseResult diagnose(const std::vector<Record> &fit_in, const std::vector<Rec
   // of 1800 s, fit records of at most 400 s; with softening, spectrum, slack
   // and stretch_relaxation the relaxations went from 14.4% to 7.2% held
   // out, docs/diagnosis_acceptance.md, session 31).
-  cx.sc.memory = std::max(cx.sc.duration, data_scales(cx.all).duration);
+  cx.sc.memory = data_scales(cx.all).duration;  // cx.all holds the fit records too
   std::vector<CandidateOutcome> first;
   const Current base = baseline_and_first_round(cx, R, first);  // 1-5a
   const Current ext = accept_causes(base, first, cx, R);        // 5b-5d, 3-5 again
