@@ -2,7 +2,8 @@
 // an accepted cause whose gain was not its own is no cause (not_a_cause);
 // an earlier cause that a later one made redundant is dropped, one that
 // still pays is kept; a degressive cubic that is a softening spring is
-// renamed (cubic_to_softening). Records of the own generator (synthetic_records.h), 4 s,
+// renamed (cubic_to_softening); a stretch word without its relaxation goes
+// (drop_orphaned). Records of the own generator (synthetic_records.h), 4 s,
 // 0.5% noise; the model with both causes is fitted jointly first, as the
 // pipeline does, so the test sees the decision and not a start that fits
 // badly.
@@ -130,6 +131,42 @@ TEST(DropRedundant, AnEarlierCauseThatStillPaysIsKept) {
   EXPECT_EQ(r.after.causes[0].name, "maxwell");
   EXPECT_EQ(r.after.error_holdout, r.before.error_holdout);
   EXPECT_GT(r.after.model.p.maxwell_k, 0.5 * sc.truth.p.maxwell_k);
+}
+
+// A stretch word left without the relaxation it refines (a revision turned
+// the Maxwell branch into a dashpot) refines nothing: it goes, whatever it
+// gains, and the model left is refitted without it. Beside its relaxation
+// it stays.
+TEST(DropOrphaned, AStretchWordWithoutItsRelaxationIsDropped) {
+  const Scenario sc = hidden_effect_scenario("maxwell", 5, 0.005, 4.0);
+  const DataScales ds = data_scales(sc.fit);
+  ExtModel start;
+  start.p = sc.truth.p;
+  start.p.relax_width = 2.0 * ds.Xmax;
+  ExtModel orphan = start;
+  orphan.p.viscous_c = orphan.p.maxwell_k * orphan.p.maxwell_tau;
+  orphan.p.maxwell_k = 0.0;
+  {
+    const DiagSetup su(sc);
+    const std::vector<Candidate> causes = {word("viscous"), word("stretch_relaxation")};
+    const ExtFitSpec spec = combined_spec(causes, su.cx.sc);
+    diag::Current cur = diag::make_current(orphan, spec, causes, su.cx);
+    DiagnoseResult R;
+    ASSERT_EQ(diag::drop_orphaned(cur, su.cx, R), 1);
+    ASSERT_EQ(R.dropped.size(), 1u);
+    EXPECT_EQ(R.dropped[0].name, "stretch_relaxation");
+    ASSERT_EQ(cur.causes.size(), 1u);
+    EXPECT_EQ(cur.causes[0].name, "viscous");
+    EXPECT_EQ(cur.model.p.relax_width, 0.0);
+    EXPECT_GT(cur.model.p.viscous_c, 0.0);
+  }
+  const DiagSetup su(sc);
+  const std::vector<Candidate> causes = {word("maxwell"), word("stretch_relaxation")};
+  diag::Current cur = diag::make_current(start, combined_spec(causes, su.cx.sc), causes, su.cx);
+  DiagnoseResult R;
+  EXPECT_EQ(diag::drop_orphaned(cur, su.cx, R), -1);
+  EXPECT_TRUE(R.dropped.empty());
+  EXPECT_EQ(cur.causes.size(), 2u);
 }
 
 // Stage 5c, second half (not_a_cause): the accepted cause is judged against

@@ -276,6 +276,30 @@ int drop_vanished(Current &cur, const Context &cx, DiagnoseResult &R) {
   return -1;
 }
 
+// A refinement (needs_other_cause: the stretch word of a relaxation) whose
+// relaxation a revision dropped or renamed refines nothing the model still
+// has: it is dropped, refitted without, whatever it gains.
+int drop_orphaned(Current &cur, const Context &cx, DiagnoseResult &R) {
+  for (size_t i = 0; i < cur.causes.size(); ++i) {
+    std::vector<Candidate> others = cur.causes;
+    others.erase(others.begin() + (long)i);
+    const std::string why = needs_other_cause(cur.causes[i], others);
+    if (why.empty()) continue;
+    Current without;
+    ExtFitResult f;
+    if (!model_without(cur, i, cx, without, f)) continue;
+    if (!cx.opt.quiet)
+      std::fprintf(stderr, "diagnose: %s %s (held-out %.3f%% without it, %.3f%% with it): dropped\n",
+                   cur.causes[i].name.c_str(), why.c_str(), 100 * without.error_holdout,
+                   100 * cur.error_holdout);
+    R.dropped.push_back({cur.causes[i].name, without.error_holdout, cur.error_holdout});
+    R.extended_fit = f;
+    cur = without;
+    return (int)i;
+  }
+  return -1;
+}
+
 bool prefer_other_definition(std::vector<Candidate> &causes, size_t i, const Context &cx,
                              ExtFitResult &fit) {
   Candidate alt;

@@ -152,6 +152,8 @@ void accept_one(Current &cur, const CandidateOutcome &best, int round, const Con
     diag::revisit_definitions(cur, cx, R);
     const int vanished = diag::drop_vanished(cur, cx, R);
     if (vanished >= 0) R.causes.erase(R.causes.begin() + vanished);
+    const int orphaned = diag::drop_orphaned(cur, cx, R);
+    if (orphaned >= 0) R.causes.erase(R.causes.begin() + orphaned);
   }
 }
 

@@ -115,6 +115,9 @@ int drop_redundant(Current &cur, const Context &cx, DiagnoseResult &R);
 // to nothing (z < min_z in the current fit) and that no longer pays; its
 // index, or -1.
 int drop_vanished(Current &cur, const Context &cx, DiagnoseResult &R);
+// Stage 5d: a refinement whose relaxation is no longer a cause is dropped
+// (cause_revision.cpp). Returns the index dropped, or -1.
+int drop_orphaned(Current &cur, const Context &cx, DiagnoseResult &R);
 // Size of cause c's effect (its first parameter, or the delay / offset) in
 // fit f over its standard deviation: the Wald z. NaN when the fit has no
 // finite standard deviation for it (a size at a clamp, a singular
