@@ -158,17 +158,15 @@ void record_sensitivities(const rtb_params &p, const Record &rec, const SimOptio
     dp[c].fill(0.0);
     dp[c][free[c]] = 1.0;
   }
-  StateDual dn;
   StageLin lin[2];
+  std::vector<double> dF(nc);
   for (size_t i = 1; i < g.x.size(); ++i) {
     StepView v = tr.step(p, g, i);
     step_precompute(v, lin);
-    for (size_t c = 0; c < nc; ++c) {
-      dn.clear();
-      const double dF = step_jvp(v, d[c], dp[c].data(), dn);
-      if ((int)i >= g.first_sample) (*jac)((Eigen::Index)i - g.first_sample, (Eigen::Index)c) = dF;
-      d[c] = dn;
-    }
+    step_jvp_columns(v, d, dp, dF.data());
+    if ((int)i >= g.first_sample)
+      for (size_t c = 0; c < nc; ++c)
+        (*jac)((Eigen::Index)i - g.first_sample, (Eigen::Index)c) = dF[c];
   }
 }
 

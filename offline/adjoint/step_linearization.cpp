@@ -46,6 +46,16 @@ void stage_matrix(const rtb_params &p, const StageView &st, const double *D, boo
   rtb_stage_matrix(p.cells, st.h, D, p.Kpa, p.Kr, transpose ? 1 : 0, lo, di, up);
 }
 
+// stage_lin plus the Thomas factors of A = I + h D K, which every tangent
+// direction (stage_jvp) solves with.
+StageLin stage_lin_factored(const rtb_params &p, const StageView &st) {
+  StageLin l = stage_lin(p, st);
+  double di[RTB_MAX_CELLS], up[RTB_MAX_CELLS];
+  stage_matrix(p, st, l.D, false, l.lo, di, up);
+  rtb_tridiag_factor(p.cells, l.lo, di, up, l.piv, l.w);  // I + h D K, D >= 0: no zero pivot
+  return l;
+}
+
 // (dK/dKr Y)_k: the chain pattern with unit Kr and no Kpa.
 double dK_dKr_row(const StageView &st, int k, int n) {
   double s = (k == 0 ? 1.0 : 2.0) * st.y[k];
@@ -58,17 +68,16 @@ double dK_dKr_row(const StageView &st, int k, int n) {
 void stage_jvp(const rtb_params &p, const StageView &st, const double *dc, double db1,
                const double *dp, double *dY) {
   const int n = p.cells;
-  double lo[RTB_MAX_CELLS], di[RTB_MAX_CELLS], up[RTB_MAX_CELLS], work[RTB_MAX_CELLS];
-  const StageLin own = st.lin ? StageLin() : stage_lin(p, st);
+  StageLin own;  // only when the step was not precomputed
+  if (!st.lin) own = stage_lin_factored(p, st);
   const StageLin &l = st.lin ? *st.lin : own;
-  stage_matrix(p, st, l.D, false, lo, di, up);
   for (int k = 0; k < n; ++k) {
     const double dKY = dp[P_Kr] * dK_dKr_row(st, k, n) + (k == 0 ? dp[P_Kpa] * st.y[0] : 0.0);
     dY[k] = dc[k] + st.h * l.D[k] * ((k == 0 ? db1 : 0.0) - dKY) +
             st.h * (l.dv_dC0[k] * dp[P_C0] + l.dv_dalpha[k] * dp[P_alpha] +
                     l.dv_dfa[k] * dp[P_fric_asym]);
   }
-  rtb_tridiag_solve(n, lo, di, up, dY, work);
+  rtb_tridiag_subst(n, l.lo, l.piv, l.w, dY);
 }
 
 // Transpose of stage_jvp: given Ybar, add to cbar and pbar; returns b1bar.
@@ -77,7 +86,8 @@ double stage_vjp(const rtb_params &p, const StageView &st, const double *Ybar, d
   const int n = p.cells;
   double lo[RTB_MAX_CELLS], di[RTB_MAX_CELLS], up[RTB_MAX_CELLS], mu[RTB_MAX_CELLS] = {0},
       work[RTB_MAX_CELLS];
-  const StageLin own = st.lin ? StageLin() : stage_lin(p, st);
+  StageLin own;
+  if (!st.lin) own = stage_lin(p, st);
   const StageLin &l = st.lin ? *st.lin : own;
   stage_matrix(p, st, l.D, true, lo, di, up);
   for (int k = 0; k < n; ++k) mu[k] = Ybar[k];
@@ -216,9 +226,8 @@ void chain_vjp(const StepView &v, const Branches &br, const StateDual &bn, State
 }
 
 // dF/d(memory), bushing_force.h's: y1 -> d_y1, z -> d_z, z_j -> d_z_spec w_j.
-double force_jvp(const StepView &v, const Branches &br, const StateDual &d, const StateDual &dn,
-                 const double *dp, bool with_inertia) {
-  const ForceLin L = force_lin(v, br.sp, with_inertia);
+double force_jvp(const ForceLin &L, const Branches &br, const StateDual &d, const StateDual &dn,
+                 const double *dp) {
   double dF = L.f.d_y1 * dn.y[0] + L.f.d_z * dn.z + L.f.d_xb * dn.xb + L.f.d_xb_old * d.xb +
               L.f.d_xbmax * d.m;
   for (int j = 0; j < br.sp.M; ++j) dF += L.f.d_z_spec * br.sp.w[j] * dn.zs[j];
@@ -249,7 +258,7 @@ double free_phase_stiffness(const StepView &v, const Branches &br) {
   t.clear();
   const double zero[P_COUNT] = {0};
   chain_jvp(v, br, z, zero, 1.0, t);
-  return force_jvp(v, br, z, t, zero, false);
+  return force_jvp(force_lin(v, br.sp, false), br, z, t, zero);
 }
 
 double clearance_jvp(const StepView &v, const Branches &br, const StateDual &d, const double *dp) {
@@ -259,7 +268,7 @@ double clearance_jvp(const StepView &v, const Branches &br, const StateDual &d, 
   StateDual t;
   t.clear();
   chain_jvp(v, br, d, dp, 0.0, t);
-  return -force_jvp(v, br, d, t, dp, false) / free_phase_stiffness(v, br);
+  return -force_jvp(force_lin(v, br.sp, false), br, d, t, dp) / free_phase_stiffness(v, br);
 }
 
 void clearance_vjp(const StepView &v, const Branches &br, double xbbar, StateDual &bo,
@@ -282,22 +291,41 @@ void clearance_vjp(const StepView &v, const Branches &br, double xbbar, StateDua
   chain_vjp(v, br, bn, bo, pbar, &ignored);
 }
 
+// One step's tangent with the step's linearization given (br, L: the same
+// for every direction).
+double step_jvp_at(const StepView &v, const Branches &br, const ForceLin &L, const StateDual &d_old,
+                   const double *dp, StateDual &d_new) {
+  const double dxb = clearance_jvp(v, br, d_old, dp);
+  chain_jvp(v, br, d_old, dp, dxb, d_new);
+  return force_jvp(L, br, d_old, d_new, dp);
+}
+
 }  // namespace
 
 void step_precompute(StepView &v, StageLin lin[2]) {
   const rtb_params &p = *v.p;
   if (p.model != RTB_MODEL_RT) return;
   for (int s = 0; s < rtb_integrator_stages(&p); ++s) {
-    lin[s] = stage_lin(p, v.st[s]);
+    lin[s] = stage_lin_factored(p, v.st[s]);
     v.st[s].lin = &lin[s];
   }
 }
 
 double step_jvp(const StepView &v, const StateDual &d_old, const double *dp, StateDual &d_new) {
   const Branches br = branches_lin(v);
-  const double dxb = clearance_jvp(v, br, d_old, dp);
-  chain_jvp(v, br, d_old, dp, dxb, d_new);
-  return force_jvp(v, br, d_old, d_new, dp, true);
+  return step_jvp_at(v, br, force_lin(v, br.sp, true), d_old, dp, d_new);
+}
+
+void step_jvp_columns(const StepView &v, std::vector<StateDual> &d,
+                      const std::vector<std::array<double, P_COUNT>> &dp, double *dF) {
+  const Branches br = branches_lin(v);
+  const ForceLin L = force_lin(v, br.sp, true);
+  StateDual dn;
+  for (size_t c = 0; c < d.size(); ++c) {
+    dn.clear();
+    dF[c] = step_jvp_at(v, br, L, d[c], dp[c].data(), dn);
+    d[c] = dn;
+  }
 }
 
 void step_vjp(const StepView &v, const StateDual &bar_new, double Fbar, StateDual &bar_old,

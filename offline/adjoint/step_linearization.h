@@ -20,6 +20,9 @@
 #ifndef RTB_OFFLINE_STEP_LINEARIZATION_H
 #define RTB_OFFLINE_STEP_LINEARIZATION_H
 
+#include <array>
+#include <vector>
+
 #include "model/forward.h"
 #include "rtb_offline.h"
 
@@ -41,6 +44,11 @@ void step_precompute(StepView &v, StageLin lin[2]);
 
 // d_new and the returned dF from d_old and the parameter direction dp.
 double step_jvp(const StepView &v, const StateDual &d_old, const double *dp, StateDual &d_new);
+// Every column of a Jacobian over one step: d[c] advanced in place and dF[c]
+// from the direction dp[c], the step's branch and force partials computed
+// once for all columns (the same bits as step_jvp column by column).
+void step_jvp_columns(const StepView &v, std::vector<StateDual> &d,
+                      const std::vector<std::array<double, P_COUNT>> &dp, double *dF);
 // Transpose: given the cotangents of the new state and of F, accumulate into
 // bar_old (not cleared) and pbar.
 void step_vjp(const StepView &v, const StateDual &bar_new, double Fbar, StateDual &bar_old,

@@ -33,6 +33,11 @@ struct StageLin {
   double dv_dC0[RTB_MAX_CELLS];  // dv/dC0 at fixed f
   double dv_dalpha[RTB_MAX_CELLS];
   double dv_dfa[RTB_MAX_CELLS];  // dv/dfric_asym at fixed f
+  // The stage's tangent matrix A = I + h D K, Thomas-factored once for all
+  // columns (rtb_tridiag_factor): sub-diagonal, pivots, eliminated
+  // super-diagonal. Filled by step_precompute (the tangent's), not by the
+  // adjoint, which solves with A^T.
+  double lo[RTB_MAX_CELLS], piv[RTB_MAX_CELLS], w[RTB_MAX_CELLS];
 };
 
 struct StageView {

@@ -10,22 +10,40 @@
 
 #include "rtb_scalar.h"
 
-/* Solve A x = rhs, A with sub-diagonal lo[1..n-1], diagonal di[0..n-1] and
- * super-diagonal up[0..n-2]. rhs is overwritten by x. work has n entries.
- * Returns 0, or -1 on a zero pivot. */
+/* Thomas factorization of A, with sub-diagonal lo[1..n-1], diagonal
+ * di[0..n-1] and super-diagonal up[0..n-2]: the pivots piv[0..n-1] and the
+ * eliminated super-diagonal w[1..n-1]. Factor once, then substitute for
+ * each right-hand side (the offline Jacobian's columns share one stage
+ * matrix). Returns 0, or -1 on a zero pivot. */
+static inline int rtb_tridiag_factor(int n, const rtb_real *lo, const rtb_real *di,
+                                     const rtb_real *up, rtb_real *piv, rtb_real *w) {
+  if (n < 1) return -1;
+  piv[0] = di[0];
+  if (piv[0] == 0.0) return -1;
+  for (int k = 1; k < n; ++k) {
+    w[k] = up[k - 1] / piv[k - 1];
+    piv[k] = di[k] - lo[k] * w[k];
+    if (piv[k] == 0.0) return -1;
+  }
+  return 0;
+}
+
+/* x = A^-1 rhs from rtb_tridiag_factor's piv and w; rhs is overwritten. */
+static inline void rtb_tridiag_subst(int n, const rtb_real *lo, const rtb_real *piv,
+                                     const rtb_real *w, rtb_real *rhs) {
+  rhs[0] /= piv[0];
+  for (int k = 1; k < n; ++k) rhs[k] = (rhs[k] - lo[k] * rhs[k - 1]) / piv[k];
+  for (int k = n - 2; k >= 0; --k) rhs[k] -= w[k + 1] * rhs[k + 1];
+}
+
+/* Solve A x = rhs (A as in rtb_tridiag_factor); rhs is overwritten by x,
+ * and left unchanged on a zero pivot. work has n entries. Returns 0, or -1
+ * on a zero pivot or n outside 1..RTB_MAX_CELLS. */
 static inline int rtb_tridiag_solve(int n, const rtb_real *lo, const rtb_real *di,
                                     const rtb_real *up, rtb_real *rhs, rtb_real *work) {
-  if (n < 1) return -1;
-  rtb_real piv = di[0];
-  if (piv == 0.0) return -1;
-  rhs[0] /= piv;
-  for (int k = 1; k < n; ++k) {
-    work[k] = up[k - 1] / piv;
-    piv = di[k] - lo[k] * work[k];
-    if (piv == 0.0) return -1;
-    rhs[k] = (rhs[k] - lo[k] * rhs[k - 1]) / piv;
-  }
-  for (int k = n - 2; k >= 0; --k) rhs[k] -= work[k + 1] * rhs[k + 1];
+  rtb_real piv[RTB_MAX_CELLS];
+  if (n > RTB_MAX_CELLS || rtb_tridiag_factor(n, lo, di, up, piv, work) != 0) return -1;
+  rtb_tridiag_subst(n, lo, piv, work, rhs);
   return 0;
 }
 
