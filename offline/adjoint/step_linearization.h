@@ -39,7 +39,8 @@ struct StateDual {
 };
 
 // Fill lin[s] with stage s's dashpot partials and point v.st[s].lin at it:
-// step_jvp then reuses them for every parameter direction (a Jacobian).
+// step_jvp and step_jvp_columns then reuse them, with the stage matrices
+// Thomas-factored, for every parameter direction (a Jacobian).
 void step_precompute(StepView &v, StageLin lin[2]);
 
 // d_new and the returned dF from d_old and the parameter direction dp.
