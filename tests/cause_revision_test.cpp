@@ -3,7 +3,8 @@
 // an earlier cause that a later one made redundant is dropped, one that
 // still pays is kept; a degressive cubic that is a softening spring is
 // renamed (cubic_to_softening); a stretch word without its relaxation goes
-// (drop_orphaned). Records of the own generator (synthetic_records.h), 4 s,
+// (drop_orphaned); a better basin found by a later round is taken
+// (repair_basin). Records of the own generator (synthetic_records.h), 4 s,
 // 0.5% noise; the model with both causes is fitted jointly first, as the
 // pipeline does, so the test sees the decision and not a start that fits
 // badly.
@@ -391,4 +392,62 @@ TEST(SpectrumToOneBranch, ASpectrumOnASlowBranchIsAMaxwellBranch) {
   ASSERT_EQ(o.replaced, 0);
   EXPECT_EQ(o.R.causes[0].cand.name, "maxwell");
   EXPECT_NEAR(o.after.model.p.maxwell_tau, sc.truth.p.maxwell_tau, 0.1 * sc.truth.p.maxwell_tau);
+}
+
+// Stage 5f (repair_basin): a later round's word whose own size is
+// insignificant but whose fit is far below the current model's shows a
+// better basin of the current model. Here the current Maxwell branch sits
+// at twice its relaxation time and half its stiffness, and a cubic spring
+// of negligible size sits at the generator's model: the current model is
+// refitted from there without the spring, and the last cause's figures are
+// the refit's. A significant word, or one that fits no better, changes
+// nothing.
+TEST(RepairBasin, AnInsignificantWordsBetterFitMovesTheCurrentModel) {
+  const Scenario sc = hidden_effect_scenario("maxwell", 5, 0.005, 4.0);
+  const DiagSetup su(sc);
+  const std::vector<Candidate> causes = {word("maxwell")};
+  const ExtFitSpec spec = combined_spec(causes, su.cx.sc);
+  ExtModel poor;
+  poor.p = sc.truth.p;
+  poor.p.maxwell_tau *= 2.0;
+  poor.p.maxwell_k *= 0.5;
+  const diag::Current before = diag::make_current(poor, spec, causes, su.cx);
+  CandidateOutcome cubic;
+  cubic.cand = word("cubic_stiffness");
+  cubic.round = 1;
+  cubic.joint = true;
+  cubic.amplitude_z = 0.1;
+  cubic.fit.model.p = sc.truth.p;
+  cubic.fit.model.p.k3 = 1e-9;
+  cubic.fit.error = extended_error(cubic.fit.model, sc.fit, su.opt.misfit);
+  ASSERT_LT(cubic.fit.error, 0.9 * before.error_fit);
+  auto run = [&](const CandidateOutcome &co, diag::Current &cur, DiagnoseResult &R) {
+    cur = before;
+    Cause c;
+    c.cand = causes[0];
+    c.error_holdout = before.error_holdout;
+    c.error_holdout_before = 2.0 * before.error_holdout;
+    c.gain = 0.5;
+    R.causes = {c};
+    return diag::repair_basin(cur, {co}, su.cx, R);
+  };
+  diag::Current cur;
+  DiagnoseResult R;
+  ASSERT_TRUE(run(cubic, cur, R));
+  EXPECT_LT(cur.error_fit, cubic.fit.error * 1.0001);
+  EXPECT_LT(cur.error_holdout, before.error_holdout);
+  EXPECT_EQ(cur.model.p.k3, 0.0);
+  EXPECT_NEAR(cur.model.p.maxwell_tau, sc.truth.p.maxwell_tau, 0.1 * sc.truth.p.maxwell_tau);
+  EXPECT_EQ(R.causes[0].error_holdout, cur.error_holdout);
+  EXPECT_DOUBLE_EQ(R.causes[0].gain, 1.0 - cur.error_holdout / (2.0 * before.error_holdout));
+  EXPECT_EQ(R.extended_fit.model.p.maxwell_tau, cur.model.p.maxwell_tau);
+
+  CandidateOutcome significant = cubic;
+  significant.amplitude_z = 10.0;
+  EXPECT_FALSE(run(significant, cur, R));
+  EXPECT_EQ(cur.model.p.maxwell_tau, before.model.p.maxwell_tau);
+  EXPECT_EQ(R.causes[0].gain, 0.5);
+  CandidateOutcome no_better = cubic;
+  no_better.fit.error = 0.95 * before.error_fit;
+  EXPECT_FALSE(run(no_better, cur, R));
 }

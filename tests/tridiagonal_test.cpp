@@ -1,8 +1,8 @@
 // tridiagonal_test.cpp -- the Thomas elimination every chain system uses
 // (rt_bushing/src/tridiagonal.h): factored once and substituted per
-// right-hand side (the offline Jacobian's columns), it gives the same bits
-// as a solve from scratch; the solution satisfies A x = b; a zero pivot
-// leaves the right-hand side untouched.
+// right-hand side (the offline Jacobian's columns), alone or all columns
+// together, it gives the same bits as a solve from scratch; the solution
+// satisfies A x = b; a zero pivot leaves the right-hand side untouched.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -31,26 +31,36 @@ Chain random_stage(std::mt19937 &g, int n) {
   return c;
 }
 
+// Substituted one column at a time or all together (rtb_tridiag_subst_many),
+// every column gets the bits of a solve from scratch.
 TEST(Tridiagonal, FactoredOnceSolvesEveryColumnAsASolveFromScratch) {
   std::mt19937 g(32);
   std::normal_distribution<double> nd;
+  constexpr int kCols = 5;
   for (int n : {1, 2, 15, RTB_MAX_CELLS}) {
     const Chain c = random_stage(g, n);
     double piv[RTB_MAX_CELLS], w[RTB_MAX_CELLS], work[RTB_MAX_CELLS];
     ASSERT_EQ(rtb_tridiag_factor(n, c.lo, c.di, c.up, piv, w), 0);
-    for (int col = 0; col < 5; ++col) {
-      double b[RTB_MAX_CELLS], x1[RTB_MAX_CELLS], x2[RTB_MAX_CELLS];
-      for (int k = 0; k < n; ++k) b[k] = x1[k] = x2[k] = nd(g);
-      rtb_tridiag_subst(n, c.lo, piv, w, x1);
-      ASSERT_EQ(rtb_tridiag_solve(n, c.lo, c.di, c.up, x2, work), 0);
+    double b[kCols][RTB_MAX_CELLS], x1[kCols][RTB_MAX_CELLS], x2[kCols][RTB_MAX_CELLS],
+        x3[kCols][RTB_MAX_CELLS];
+    double *cols[kCols];
+    for (int col = 0; col < kCols; ++col) {
+      for (int k = 0; k < n; ++k) b[col][k] = x1[col][k] = x2[col][k] = x3[col][k] = nd(g);
+      cols[col] = x3[col];
+      rtb_tridiag_subst(n, c.lo, piv, w, x1[col]);
+      ASSERT_EQ(rtb_tridiag_solve(n, c.lo, c.di, c.up, x2[col], work), 0);
+    }
+    rtb_tridiag_subst_many(n, c.lo, piv, w, kCols, cols);
+    for (int col = 0; col < kCols; ++col) {
       double bmax = 0.0;
-      for (int k = 0; k < n; ++k) bmax = std::fmax(bmax, std::fabs(b[k]));
+      for (int k = 0; k < n; ++k) bmax = std::fmax(bmax, std::fabs(b[col][k]));
       for (int k = 0; k < n; ++k) {
-        EXPECT_EQ(x1[k], x2[k]) << "n " << n << " k " << k;  // the same bits
-        double Ax = c.di[k] * x1[k];
-        if (k > 0) Ax += c.lo[k] * x1[k - 1];
-        if (k + 1 < n) Ax += c.up[k] * x1[k + 1];
-        EXPECT_NEAR(Ax, b[k], 1e-12 * bmax) << "n " << n << " k " << k;
+        EXPECT_EQ(x1[col][k], x2[col][k]) << "n " << n << " k " << k;  // the same bits
+        EXPECT_EQ(x3[col][k], x2[col][k]) << "n " << n << " k " << k;
+        double Ax = c.di[k] * x1[col][k];
+        if (k > 0) Ax += c.lo[k] * x1[col][k - 1];
+        if (k + 1 < n) Ax += c.up[k] * x1[col][k + 1];
+        EXPECT_NEAR(Ax, b[col][k], 1e-12 * bmax) << "n " << n << " k " << k;
       }
     }
   }

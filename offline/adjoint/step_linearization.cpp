@@ -1,6 +1,7 @@
 // step_linearization.cpp -- exact tangent and adjoint of one stepper step.
 #include "adjoint/step_linearization.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -64,20 +65,29 @@ double dK_dKr_row(const StageView &st, int k, int n) {
   return s;
 }
 
-// dY = A^-1 [dc + h D e1 db1 - h D (dK Y) + h phi_p dp].
-void stage_jvp(const rtb_params &p, const StageView &st, const double *dc, double db1,
-               const double *dp, double *dY) {
+// Tangent directions advance through a step together (a Jacobian's
+// columns, step_jvp_columns), at most this many at a time.
+constexpr int kMaxColumns = P_COUNT;
+
+// dY[c] = A^-1 [dc[c] + h D e1 db1[c] - h D (dK Y) + h phi_p dp[c]] for the
+// m directions c, substituted together (rtb_tridiag_subst_many): each
+// column's arithmetic is the same as alone.
+void stage_jvp(const rtb_params &p, const StageView &st, int m, const double *const *dc,
+               const double *db1, const double *const *dp, double *const *dY) {
   const int n = p.cells;
   StageLin own;  // only when the step was not precomputed
   if (!st.lin) own = stage_lin_factored(p, st);
   const StageLin &l = st.lin ? *st.lin : own;
-  for (int k = 0; k < n; ++k) {
-    const double dKY = dp[P_Kr] * dK_dKr_row(st, k, n) + (k == 0 ? dp[P_Kpa] * st.y[0] : 0.0);
-    dY[k] = dc[k] + st.h * l.D[k] * ((k == 0 ? db1 : 0.0) - dKY) +
-            st.h * (l.dv_dC0[k] * dp[P_C0] + l.dv_dalpha[k] * dp[P_alpha] +
-                    l.dv_dfa[k] * dp[P_fric_asym]);
+  for (int c = 0; c < m; ++c) {
+    const double *q = dp[c];
+    for (int k = 0; k < n; ++k) {
+      const double dKY = q[P_Kr] * dK_dKr_row(st, k, n) + (k == 0 ? q[P_Kpa] * st.y[0] : 0.0);
+      dY[c][k] = dc[c][k] + st.h * l.D[k] * ((k == 0 ? db1[c] : 0.0) - dKY) +
+                 st.h * (l.dv_dC0[k] * q[P_C0] + l.dv_dalpha[k] * q[P_alpha] +
+                         l.dv_dfa[k] * q[P_fric_asym]);
+    }
   }
-  rtb_tridiag_subst(n, l.lo, l.piv, l.w, dY);
+  rtb_tridiag_subst_many(n, l.lo, l.piv, l.w, m, dY);
 }
 
 // Transpose of stage_jvp: given Ybar, add to cbar and pbar; returns b1bar.
@@ -153,23 +163,42 @@ ForceLin force_lin(const StepView &v, const rtb_spectrum &sp, bool with_inertia)
 }
 
 // ------------------------------------------------------------- C and Fo
-// State map C with the bushing displacement's own tangent dxb given.
-void chain_jvp(const StepView &v, const Branches &br, const StateDual &d, const double *dp,
-               double dxb, StateDual &dn) {
+// The stages of the state map C for m directions (column c: d[c], dp[c] and
+// the bushing displacement's own tangent dxb[c]) into dn[c].
+void stages_jvp(const StepView &v, int m, const StateDual *const *d, const double *const *dp,
+                const double *dxb, StateDual *const *dn) {
   const rtb_params &p = *v.p;
   const int n = p.cells;
-  if (p.model == RTB_MODEL_RT) {
-    if (rtb_integrator_stages(&p) == 1) {
-      stage_jvp(p, v.st[0], d.y, dp[P_Kpa] * v.xb_new + p.Kpa * dxb, dp, dn.y);
-    } else {
-      const double xg = v.xb_old + kGamma * (v.xb_new - v.xb_old);
-      const double dxg = d.xb + kGamma * (dxb - d.xb);
-      double dY1[RTB_MAX_CELLS], dc2[RTB_MAX_CELLS];
-      stage_jvp(p, v.st[0], d.y, dp[P_Kpa] * xg + p.Kpa * dxg, dp, dY1);
-      for (int k = 0; k < n; ++k) dc2[k] = d.y[k] + kRho * (dY1[k] - d.y[k]);
-      stage_jvp(p, v.st[1], dc2, dp[P_Kpa] * v.xb_new + p.Kpa * dxb, dp, dn.y);
-    }
+  const double *dc[kMaxColumns];
+  double *dy[kMaxColumns], db[kMaxColumns];
+  for (int c = 0; c < m; ++c) dc[c] = d[c]->y, dy[c] = dn[c]->y;
+  if (rtb_integrator_stages(&p) == 1) {
+    for (int c = 0; c < m; ++c) db[c] = dp[c][P_Kpa] * v.xb_new + p.Kpa * dxb[c];
+    stage_jvp(p, v.st[0], m, dc, db, dp, dy);
+    return;
   }
+  const double xg = v.xb_old + kGamma * (v.xb_new - v.xb_old);
+  double Y1[kMaxColumns][RTB_MAX_CELLS], c2[kMaxColumns][RTB_MAX_CELLS];
+  double *y1[kMaxColumns];
+  const double *c2p[kMaxColumns];
+  for (int c = 0; c < m; ++c) {
+    const double dxg = d[c]->xb + kGamma * (dxb[c] - d[c]->xb);
+    db[c] = dp[c][P_Kpa] * xg + p.Kpa * dxg;
+    y1[c] = Y1[c];
+  }
+  stage_jvp(p, v.st[0], m, dc, db, dp, y1);
+  for (int c = 0; c < m; ++c) {
+    for (int k = 0; k < n; ++k) c2[c][k] = d[c]->y[k] + kRho * (Y1[c][k] - d[c]->y[k]);
+    db[c] = dp[c][P_Kpa] * v.xb_new + p.Kpa * dxb[c];
+    c2p[c] = c2[c];
+  }
+  stage_jvp(p, v.st[1], m, c2p, db, dp, dy);
+}
+
+// The rest of C: the Maxwell and spectrum branches, xb, the Mullins memory.
+void memory_jvp(const StepView &v, const Branches &br, const StateDual &d, const double *dp,
+                double dxb, StateDual &dn) {
+  const rtb_params &p = *v.p;
   const rtb_maxwell_lin &mx = br.mx;
   dn.z = p.maxwell_tau > 0.0 ? mx.d_z_old * d.z + mx.d_tau * dp[P_maxwell_tau] +
                                    mx.d_xb_new * dxb + mx.d_xb_old * d.xb
@@ -178,6 +207,21 @@ void chain_jvp(const StepView &v, const Branches &br, const StateDual &d, const 
     dn.zs[j] = br.s[j].d_z_old * d.zs[j] + br.s[j].d_xb_new * dxb + br.s[j].d_xb_old * d.xb;
   dn.xb = dxb;
   dn.m = std::fabs(v.xb_new) > v.xbmax_old ? (v.xb_new > 0 ? dxb : -dxb) : d.m;
+}
+
+// State map C for m directions (dn[c] distinct from d[c]).
+void chain_jvp(const StepView &v, const Branches &br, int m, const StateDual *const *d,
+               const double *const *dp, const double *dxb, StateDual *const *dn) {
+  if (v.p->model == RTB_MODEL_RT) stages_jvp(v, m, d, dp, dxb, dn);
+  for (int c = 0; c < m; ++c) memory_jvp(v, br, *d[c], dp[c], dxb[c], *dn[c]);
+}
+
+// State map C with the bushing displacement's own tangent dxb given.
+void chain_jvp(const StepView &v, const Branches &br, const StateDual &d, const double *dp,
+               double dxb, StateDual &dn) {
+  const StateDual *pd = &d;
+  StateDual *pn = &dn;
+  chain_jvp(v, br, 1, &pd, &dp, &dxb, &pn);
 }
 
 // Transpose of chain_jvp; *xbbar receives the cotangent of xb_new.
@@ -291,13 +335,18 @@ void clearance_vjp(const StepView &v, const Branches &br, double xbbar, StateDua
   chain_vjp(v, br, bn, bo, pbar, &ignored);
 }
 
-// One step's tangent with the step's linearization given (br, L: the same
-// for every direction).
-double step_jvp_at(const StepView &v, const Branches &br, const ForceLin &L, const StateDual &d_old,
-                   const double *dp, StateDual &d_new) {
-  const double dxb = clearance_jvp(v, br, d_old, dp);
-  chain_jvp(v, br, d_old, dp, dxb, d_new);
-  return force_jvp(L, br, d_old, d_new, dp);
+// One step's tangent for m directions with the step's linearization given
+// (br, L: the same for every direction); d_new[c] distinct from d_old[c].
+void step_jvp_at(const StepView &v, const Branches &br, const ForceLin &L, int m,
+                 const StateDual *const *d_old, const double *const *dp, StateDual *const *d_new,
+                 double *dF) {
+  double dxb[kMaxColumns];
+  for (int c = 0; c < m; ++c) {
+    d_new[c]->clear();
+    dxb[c] = clearance_jvp(v, br, *d_old[c], dp[c]);
+  }
+  chain_jvp(v, br, m, d_old, dp, dxb, d_new);
+  for (int c = 0; c < m; ++c) dF[c] = force_jvp(L, br, *d_old[c], *d_new[c], dp[c]);
 }
 
 }  // namespace
@@ -313,18 +362,26 @@ void step_precompute(StepView &v, StageLin lin[2]) {
 
 double step_jvp(const StepView &v, const StateDual &d_old, const double *dp, StateDual &d_new) {
   const Branches br = branches_lin(v);
-  return step_jvp_at(v, br, force_lin(v, br.sp, true), d_old, dp, d_new);
+  const StateDual *po = &d_old;
+  StateDual *pn = &d_new;
+  double dF = 0.0;
+  step_jvp_at(v, br, force_lin(v, br.sp, true), 1, &po, &dp, &pn, &dF);
+  return dF;
 }
 
 void step_jvp_columns(const StepView &v, std::vector<StateDual> &d,
                       const std::vector<std::array<double, P_COUNT>> &dp, double *dF) {
   const Branches br = branches_lin(v);
   const ForceLin L = force_lin(v, br.sp, true);
-  StateDual dn;
-  for (size_t c = 0; c < d.size(); ++c) {
-    dn.clear();
-    dF[c] = step_jvp_at(v, br, L, d[c], dp[c].data(), dn);
-    d[c] = dn;
+  StateDual dn[kMaxColumns];
+  const StateDual *po[kMaxColumns];
+  StateDual *pn[kMaxColumns];
+  const double *pp[kMaxColumns];
+  for (size_t c0 = 0; c0 < d.size(); c0 += kMaxColumns) {
+    const int m = (int)std::min<size_t>(kMaxColumns, d.size() - c0);
+    for (int c = 0; c < m; ++c) po[c] = &d[c0 + c], pn[c] = &dn[c], pp[c] = dp[c0 + c].data();
+    step_jvp_at(v, br, L, m, po, pp, pn, dF + c0);
+    for (int c = 0; c < m; ++c) d[c0 + c] = dn[c];
   }
 }
 

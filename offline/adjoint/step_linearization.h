@@ -47,7 +47,9 @@ void step_precompute(StepView &v, StageLin lin[2]);
 double step_jvp(const StepView &v, const StateDual &d_old, const double *dp, StateDual &d_new);
 // Every column of a Jacobian over one step: d[c] advanced in place and dF[c]
 // from the direction dp[c], the step's branch and force partials computed
-// once for all columns (the same bits as step_jvp column by column).
+// once for all columns and the stages' substitutions run for all columns
+// together, their chains of divisions overlapping (the same bits as
+// step_jvp column by column).
 void step_jvp_columns(const StepView &v, std::vector<StateDual> &d,
                       const std::vector<std::array<double, P_COUNT>> &dp, double *dF);
 // Transpose: given the cotangents of the new state and of F, accumulate into

@@ -412,6 +412,20 @@ std::vector<CandidateOutcome> one_round(const Current &cur, const Context &cx, i
   return out;
 }
 
+// The round's joint fits judged again against a current model that changed
+// under them (repair_basin): the fits stand, their criteria are recomputed.
+void rejudge(std::vector<CandidateOutcome> &out, const Current &cur, const Context &cx, int round) {
+  const double min_gain = round == 0 ? cx.opt.min_gain : cx.opt.min_gain_next;
+  for (CandidateOutcome &co : out) {
+    if (!co.joint) continue;
+    co.why.clear();
+    co.eligible = false;
+    co.lead = false;
+    judge(co, cur, cx, min_gain);
+  }
+  demote_lead_twins(out, cur);
+}
+
 // What-if mode: the imposed word's joint fit with the lowest held-out error
 // (of its variants), eligible or not; nullptr if no fit succeeded.
 const CandidateOutcome *imposed_cause(const std::vector<CandidateOutcome> &round,
@@ -424,8 +438,9 @@ const CandidateOutcome *imposed_cause(const std::vector<CandidateOutcome> &round
   return pick;
 }
 
-// Basin check of the first round: a candidate whose own term is
-// insignificant but whose fit is much better found a better RT minimum.
+// Basin check (the first round, and stage 5f later): a candidate whose own
+// term is insignificant but whose fit is much better found a better minimum
+// of the current model.
 const CandidateOutcome *better_basin(const std::vector<CandidateOutcome> &out, double base_error,
                                      double min_z) {
   const CandidateOutcome *better = nullptr;

@@ -157,6 +157,22 @@ void accept_one(Current &cur, const CandidateOutcome &best, int round, const Con
   }
 }
 
+// Stage 5f, when a later round has no eligible word: a better basin of the
+// current model that the round's fits found (repair_basin) is taken, the
+// round judged against it, or run again while above the floor. Only then:
+// a round with an eligible word keeps its verdict, since the better basin
+// may be the core imitating that word (blindgen viscous+cubic_stiffness_s10:
+// after the cubic, an insignificant inertia's fit put the core in a basin
+// that fitted 2.71% against the eligible dashpot's 2.69%, and took the
+// dashpot's gain).
+void repair_when_stuck(Current &cur, std::vector<CandidateOutcome> &round_out, int round,
+                       const Context &cx, DiagnoseResult &R) {
+  if (R.imposed || select_cause(round_out, cx.opt.parsimony, cx.selection_scales())) return;
+  if (!diag::repair_basin(cur, round_out, cx, R)) return;
+  if (above_floor(cur, R, cx.opt)) round_out = diag::one_round(cur, cx, round, R);
+  else diag::rejudge(round_out, cur, cx, round);
+}
+
 // Stages 5b-5e, then 3-5 again: accept the best eligible candidate (or the
 // imposed word), or a pair when no single word pays, and look for the next
 // cause at the extended model while the residual is above the floor.
@@ -180,6 +196,7 @@ Current accept_causes(Current cur, std::vector<CandidateOutcome> round_out, cons
                   : (round + 1 >= opt.max_causes || !above_floor(cur, R, opt)))
       break;
     round_out = diag::one_round(cur, cx, round + 1, R);
+    repair_when_stuck(cur, round_out, round + 1, cx, R);
   }
   diag::final_sizes(R);
   return cur;

@@ -53,7 +53,10 @@
 //                 so they only compensate a drift (`withdrawn` in the JSON).
 // Basin check: plain RT is nested in every candidate. If an insignificant
 // candidate fits below 0.9x the baseline, the baseline is refitted from its
-// RT part and the first round runs once more.
+// RT part and the first round runs once more. Likewise in a later round
+// (stage 5f, repair_basin): the current causes are refitted from such a
+// candidate's fit without its word; the round is judged against the refit,
+// or run once more if the refit is still above the noise floor.
 #ifndef RTB_OFFLINE_DIAGNOSE_H
 #define RTB_OFFLINE_DIAGNOSE_H
 
@@ -267,6 +270,7 @@ struct Cause {
   std::vector<double> value, stddev;  // ... with uncertainty (stddev NaN if unknown)
   double error_holdout = 0.0; // held-out eq. (27) error with this and the earlier causes
   double gain = 0.0;          // 1 - error_holdout / the previous model's
+  double error_holdout_before = 0.0;  // the previous model's held-out error
   bool paired = false;        // one of the first two causes, accepted as a pair (stage 5e)
   // Accepted on the fit records: the held-out ones were at their noise
   // floor and could not judge (fit_records_decide).

@@ -83,6 +83,9 @@ std::vector<CandidateOutcome> one_round(const Current &cur, const Context &cx, i
 const CandidateOutcome *better_basin(const std::vector<CandidateOutcome> &out, double base_error,
                                      double min_z);
 
+// The round's joint fits judged again against a changed current model.
+void rejudge(std::vector<CandidateOutcome> &out, const Current &cur, const Context &cx, int round);
+
 // What-if mode: the imposed word's best joint fit, eligible or not.
 const CandidateOutcome *imposed_cause(const std::vector<CandidateOutcome> &round,
                                       const std::string &name);
@@ -115,6 +118,11 @@ int drop_redundant(Current &cur, const Context &cx, DiagnoseResult &R);
 // to nothing (z < min_z in the current fit) and that no longer pays; its
 // index, or -1.
 int drop_vanished(Current &cur, const Context &cx, DiagnoseResult &R);
+// Stage 5f: a later round's insignificant candidate that fits below 0.9x
+// the current model found a better basin of the current model: refit from
+// there, adopted when lower (cause_revision.cpp). True when cur changed.
+bool repair_basin(Current &cur, const std::vector<CandidateOutcome> &round, const Context &cx,
+                  DiagnoseResult &R);
 // Stage 5d: a refinement whose relaxation is no longer a cause is dropped
 // (cause_revision.cpp). Returns the index dropped, or -1.
 int drop_orphaned(Current &cur, const Context &cx, DiagnoseResult &R);

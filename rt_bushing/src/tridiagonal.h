@@ -28,12 +28,24 @@ static inline int rtb_tridiag_factor(int n, const rtb_real *lo, const rtb_real *
   return 0;
 }
 
+/* x[c] = A^-1 x[c] for the m right-hand sides x[0..m-1], from
+ * rtb_tridiag_factor's piv and w. The columns advance row by row together:
+ * each is a chain of dependent divisions, and interleaved the chains
+ * overlap (the offline Jacobian's columns); each column's arithmetic is
+ * the same as alone. */
+static inline void rtb_tridiag_subst_many(int n, const rtb_real *lo, const rtb_real *piv,
+                                          const rtb_real *w, int m, rtb_real *const *x) {
+  for (int c = 0; c < m; ++c) x[c][0] /= piv[0];
+  for (int k = 1; k < n; ++k)
+    for (int c = 0; c < m; ++c) x[c][k] = (x[c][k] - lo[k] * x[c][k - 1]) / piv[k];
+  for (int k = n - 2; k >= 0; --k)
+    for (int c = 0; c < m; ++c) x[c][k] -= w[k + 1] * x[c][k + 1];
+}
+
 /* x = A^-1 rhs from rtb_tridiag_factor's piv and w; rhs is overwritten. */
 static inline void rtb_tridiag_subst(int n, const rtb_real *lo, const rtb_real *piv,
                                      const rtb_real *w, rtb_real *rhs) {
-  rhs[0] /= piv[0];
-  for (int k = 1; k < n; ++k) rhs[k] = (rhs[k] - lo[k] * rhs[k - 1]) / piv[k];
-  for (int k = n - 2; k >= 0; --k) rhs[k] -= w[k + 1] * rhs[k + 1];
+  rtb_tridiag_subst_many(n, lo, piv, w, 1, &rhs);
 }
 
 /* Solve A x = rhs (A as in rtb_tridiag_factor); rhs is overwritten by x,
