@@ -107,7 +107,7 @@ bool not_a_cause(Current &cur, const Current &before, const Candidate &c, const 
     return false;
   }
   const Current without = make_current(f.model, before.spec, before.causes, cx);
-  const double min_gain = before.causes.empty() ? opt.min_gain : opt.min_gain_next;
+  const double min_gain = round_min_gain(opt, before.causes.empty() ? 0 : 1);
   if (cause_pays(without.errors(), cur.errors(), cx.selection_scales(), min_gain, opt)) return false;
   if (!opt.quiet)
     std::fprintf(stderr, "diagnose: %s does not pay against the model without it refitted "

@@ -397,7 +397,7 @@ std::vector<CandidateOutcome> one_round(const Current &cur, const Context &cx, i
   joint_fits(out, cur, cx, round == 0 ? cx.opt.joint_fits : cx.opt.joint_fits_next,
              imposed.empty() ? std::string() : imposed[(size_t)round]);
   R.seconds_joint += since(t_joint);
-  const double min_gain = round == 0 ? cx.opt.min_gain : cx.opt.min_gain_next;
+  const double min_gain = round_min_gain(cx.opt, round);
   for (CandidateOutcome &co : out) {
     judge(co, cur, cx, min_gain);
     const auto t_again = Clock::now();
@@ -415,7 +415,7 @@ std::vector<CandidateOutcome> one_round(const Current &cur, const Context &cx, i
 // The round's joint fits judged again against a current model that changed
 // under them (repair_basin): the fits stand, their criteria are recomputed.
 void rejudge(std::vector<CandidateOutcome> &out, const Current &cur, const Context &cx, int round) {
-  const double min_gain = round == 0 ? cx.opt.min_gain : cx.opt.min_gain_next;
+  const double min_gain = round_min_gain(cx.opt, round);
   for (CandidateOutcome &co : out) {
     if (!co.joint) continue;
     co.why.clear();

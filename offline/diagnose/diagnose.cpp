@@ -135,7 +135,7 @@ void accept_one(Current &cur, const CandidateOutcome &best, int round, const Con
        diag::other_cells_explain(cur, before, best.cand, cx, R));
   if (!rejected) {
     Cause c = diag::make_cause(accepted, before);
-    const double min_gain = round == 0 ? cx.opt.min_gain : cx.opt.min_gain_next;
+    const double min_gain = diag::round_min_gain(cx.opt, round);
     // Judged on the fit records only where they did decide: an imposed
     // word (what-if) that pays on neither is not said to have been judged.
     c.on_fit_records =

@@ -43,6 +43,12 @@ inline std::vector<Record> concat(const std::vector<Record> &a, const std::vecto
   return all;
 }
 
+// The held-out gain a word must bring in a round: min_gain in the first,
+// min_gain_next in later ones.
+inline double round_min_gain(const DiagnoseOptions &opt, int round) {
+  return round == 0 ? opt.min_gain : opt.min_gain_next;
+}
+
 // What every stage reads: the records, the selection figure's set-up, the
 // options, the data's scales and the noise floor once stage 2 has run.
 struct Context {
