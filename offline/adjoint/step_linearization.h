@@ -36,6 +36,9 @@ struct StateDual {
   double xb;                // bushing displacement (moves only with a clearance)
   double m;                 // Mullins memory max |xb|
   void clear();
+  // The entries a model of `cells` cells and `branches` spectrum branches
+  // uses, copied from o; the capacity beyond is left as it is.
+  void assign_used(const StateDual &o, int cells, int branches);
 };
 
 // Fill lin[s] with stage s's dashpot partials and point v.st[s].lin at it:
