@@ -19,6 +19,7 @@ struct MisfitOptions {
   double fit_from = 0.0;                 // [time] samples before t0 + fit_from are masked
   std::array<double, P_COUNT> R{};       // Tikhonov weights (0 = none), eq. (11)
   std::array<double, P_COUNT> p0{};      // Tikhonov reference values
+  int threads = 1;  // records simulated in parallel by the extended fits (diagnose)
 };
 
 // Trapezoidal quadrature weights of eq. (11)/(27) on the record's own time

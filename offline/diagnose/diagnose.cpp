@@ -246,8 +246,13 @@ void report(const Current &base, const Current &ext, const Context &cx, Diagnose
 }  // namespace
 
 DiagnoseResult diagnose(const std::vector<Record> &fit_in, const std::vector<Record> &holdout_in,
-                        const DiagnoseOptions &opt) {
+                        const DiagnoseOptions &opt_in) {
   const auto t0 = Clock::now();
+  // The stages that run one fit at a time (baseline, revisions, refits,
+  // report) simulate its records in parallel; a parallel candidate loop
+  // keeps its fits serial (parallel_for).
+  DiagnoseOptions opt = opt_in;
+  opt.misfit.threads = opt.threads;
   DiagnoseResult R;
   // 0. The model input: one decision for all records.
   std::vector<Record> both = concat(fit_in, holdout_in);

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "identify/optimizer.h"
+#include "model/parallel_for.h"
 
 namespace rtb {
 
@@ -98,9 +99,11 @@ double extended_error(const ExtModel &m, const std::vector<Record> &recs,
   double J = 0.0, J0 = 0.0;
   ExtFitSpec none;
   none.free.clear();
-  for (const Record &rec : recs) {
-    Eigen::VectorXd F;
-    predict_extended(m, rec, opt.sim, none, F, nullptr);
+  std::vector<Eigen::VectorXd> Fs(recs.size());
+  parallel_for(recs.size(), opt.threads,
+               [&](size_t k) { predict_extended(m, recs[k], opt.sim, none, Fs[k], nullptr); });
+  for (const Record &rec : recs) {  // summed in record order: the same bits on any thread count
+    const Eigen::VectorXd &F = Fs[(size_t)(&rec - &recs[0])];
     const std::vector<double> w = quadrature_weights(rec, opt.fit_from);
     std::vector<double> terms;
     for (size_t j = 0; j < rec.F.size(); ++j) {
@@ -160,10 +163,16 @@ ExtFitResult fit_extended(const std::vector<Record> &recs, const ExtModel &start
       Eigen::Index c = P;
       if (spec.fit_delay) { dn(c, c) = m.delay; ++c; }
       if (spec.fit_offset) dn(c, c) = spec.offset_scale;
+      // The records simulated in parallel (serially inside a parallel
+      // candidate loop), stacked in record order.
+      std::vector<Eigen::VectorXd> Fs(recs.size());
+      std::vector<Eigen::MatrixXd> Js(recs.size());
+      parallel_for(recs.size(), opt.threads, [&](size_t k) {
+        predict_extended(m, recs[k], opt.sim, spec, Fs[k], jac ? &Js[k] : nullptr, &cache);
+      });
       for (const Record &rec : recs) {
-        Eigen::VectorXd F;
-        Eigen::MatrixXd J;
-        predict_extended(m, rec, opt.sim, spec, F, jac ? &J : nullptr, &cache);
+        const Eigen::VectorXd &F = Fs[(size_t)(&rec - &recs[0])];
+        const Eigen::MatrixXd &J = Js[(size_t)(&rec - &recs[0])];
         const std::vector<double> &w = weights[(size_t)(&rec - &recs[0])];
         for (size_t j = 0; j < rec.F.size(); ++j) {
           if (!(w[j] > 0.0)) continue;
