@@ -246,7 +246,9 @@ typedef struct rtb_params {
  * extensions, smoothing or clearance: one unit per eq. (1) evaluation (one
  * exp, one log), 3 per smoothed eq. (14) evaluation (each inverse iteration
  * included), N per STS active-set solve (a response's solves are capped by
- * what is left). A Newton sweep costs N evaluations, a
+ * what is left) and per solve of a near-friction stage's start (alpha <=
+ * 0.1: the stage's friction limit, capped likewise, leaving one sweep). A
+ * Newton sweep costs N evaluations, a
  * clearance response one or more sweeps; each starts only while a whole
  * sweep is left. The stage starts of the response under way still complete
  * (a consistent iterate needs them), so the hard bound is W + 6 N u

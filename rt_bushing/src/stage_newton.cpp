@@ -49,6 +49,22 @@
  * (tests/cell_row_solve_test.cpp). Steps whose full step does not blow up
  * are unchanged, bit for bit.
  *
+ * Near-friction start (session 35): for eq. (1) with alpha <= 0.1 the stage
+ * also solves its rate-independent limit (friction_limit.h: which cells
+ * slide, exactly, in a few tridiagonal solves) and starts from it when its
+ * residual is lower. From the last step's pair, a cell that must go from
+ * sticking to slipping made Newton overshoot the level and halve its step
+ * about ten times per stage. On the records of a diagnosis whose baseline
+ * fitted alpha = 0.001 (blindgen backlash+cubic_stiffness, seed 17): 440-610
+ * work units per step -> 178-198, 8.5-11.8 -> 2.7 Newton iterations, 10-20
+ * -> 0.1-0.2 halvings, 1-7 unconverged steps of 8000 -> none, median step
+ * 10-18 -> 3.4-6 us. BM_RandomConfigs' unconverged share: 1.53% -> 1.35% at
+ * the default budget, 16.5% -> 12.2% at 640 units. Not with the eq. (14)
+ * smoothing, where it cost more than it saved (CellRowSolve's smoothed
+ * jumps: 600 -> 830 units per step), nor above alpha = 0.1, where the level
+ * changes too much with the velocity for the limit to help (alpha <= 0.3:
+ * 12.0% at 640 units, but the default element's median step doubled).
+ *
  * Stuck cells (session 18): a cell whose dashpot force keeps its velocity
  * too small to move the residual by a thousandth of the tolerance is held at
  * v = 0 and left out of the law sweeps and the Newton matrix (active_cells,
@@ -66,6 +82,7 @@
 
 #include "cell_row_solve.h"
 #include "dashpot_law.h"
+#include "friction_limit.h"
 #include "law_lanes.h"
 #include "newton_step.h"
 #include "rtb_internal.h"
@@ -336,6 +353,36 @@ bool start_iterate(const Chain &ch, const rtb_real *f0, const rtb_real *v0, cons
   return free_start;
 }
 
+/* Near-friction dashpots: eq. (1) with alpha at most this. */
+#define RTB_FRICTION_ALPHA 0.1
+
+/* The start from the stage's rate-independent limit (friction_limit.h),
+ * for near-friction dashpots: the limit's active set at the base levels
+ * C0 (1 +- a) (|v| = 1), then one law sweep puts the pair on the curve
+ * (sliding cells at their velocity, still ones at their force). Taken into
+ * *t when its residual is below the start's x, unless x is already
+ * converged (|H| <= done); each solve costs a sweep's units. Returns
+ * whether it was taken. */
+bool friction_start(const Chain &ch, const rtb_real *r, rtb_real done, const Iterate &x,
+                    Iterate *t, int *budget) {
+  const int n = ch.n;
+  if (ch.law.s > 0.0 || !(ch.law.alpha <= RTB_FRICTION_ALPHA) || x.hnorm <= done) return false;
+  const int room = *budget / ch.sweep - 1; /* leave the sweep that follows */
+  const int max_solves = room < RTB_STS_MAX_ITERS(n) ? room : RTB_STS_MAX_ITERS(n);
+  if (max_solves < 2) return false;
+  rtb_real Lp[RTB_MAX_CELLS], Lm[RTB_MAX_CELLS];
+  int act[RTB_MAX_CELLS];
+  for (int k = 0; k < n; ++k) Lp[k] = ch.law.C0p, Lm[k] = ch.law.C0m;
+  const int solves =
+      rtb_friction_limit(n, ch.hK0, ch.hKr, r, Lp, Lm, 0, max_solves, act, t->v, t->f);
+  *budget -= (solves < 0 ? -solves : solves) * ch.sweep;
+  if (solves == 0) return false;
+  for (int k = 0; k < n; ++k) t->steep[k] = act[k] != 0;
+  t->fmax_abs = law_sweep(ch, t->steep, t->f, t->v, t->D, budget);
+  t->hnorm = residual(ch, t->f, t->v, r, t->H, &t->h2);
+  return t->hnorm <= RTB_REAL_MAX && t->h2 < x.h2;
+}
+
 /* A trial residual this many times the current one is a blow-up, not a
  * poor step: the Gauss-Seidel repair is tried. Thresholds 1e3 and 1e6 leave
  * 1.73% and 1.40% of BM_RandomConfigs' steps unconverged (without the gain
@@ -532,7 +579,12 @@ extern "C" rtb_status rtb_stage_solve(const rtb_params *p, const rtb_settings *s
   st->converged = 1;
   x->hnorm = 0.0;
   rtb_real scale = rnorm;
-  const bool free_start = ch.n > 0 && start_iterate(ch, f0, v0, D0, v_guess, r, x, budget);
+  bool free_start = ch.n > 0 && start_iterate(ch, f0, v0, D0, v_guess, r, x, budget);
+  const rtb_real done = set->tol * (x->fmax_abs > rnorm ? x->fmax_abs : rnorm);
+  if (ch.n > 0 && friction_start(ch, r, done, *x, &bufs[1], budget)) {
+    x = &bufs[1];
+    free_start = false;
+  }
   /* A locked cell pushed past f_lock is unlocked with the next ones, 1, 2,
    * 4, ... at a time, so a load front running deep into the chain costs
    * log2(N) re-solves rather than N. */
