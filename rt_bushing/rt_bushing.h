@@ -263,8 +263,10 @@ typedef struct rtb_params {
  * so the default bounds a step at ~110 us; a host that needs a tighter bound
  * sets max_work (per call, so per element; or builds with -DRTB_STEP_WORK=W
  * to change the default): at 640 units the slowest of 90 000 steps over
- * 300 random valid configurations measured 18.6 us (16.6% of those
- * extreme steps unconverged; 1.5% at the default), at the price of more
+ * 300 random valid configurations measured 18.6 us (session 22; 16.6% of
+ * those extreme steps unconverged, 1.5% at the default; since session 35's
+ * friction-limit start 11.5% and 1.05%, and 22.0 us in a guest state where
+ * session 22's library took 35.5 us), at the price of more
  * RTB_NOT_CONVERGED steps on hard configurations (BM_RandomConfigs/budget:W,
  * docs/benchmarks.md). */
 #ifndef RTB_STEP_WORK
