@@ -27,11 +27,10 @@ double log_uniform(std::mt19937 &g, double lo, double hi) {
 // = r, still cells (v_k == 0) within [-Lm, Lp], sliding ones at their level
 // with the velocity's sign. The limit is a strictly convex problem, so these
 // identify its one solution. Returns the number of sliding cells.
-int expect_limit_conditions(int n, double hK0, double hKr, const std::vector<double> &r,
-                            const std::vector<double> &Lp, const std::vector<double> &Lm,
-                            const std::vector<double> &v, const std::vector<double> &f) {
-  double scale = 0.0;
-  for (int k = 0; k < n; ++k) scale = std::max({scale, std::fabs(r[k]), Lp[k], Lm[k]});
+int expect_limit_conditions(int n, double hK0, double hKr, const std::vector<double> &r, double Lp,
+                            double Lm, const std::vector<double> &v, const std::vector<double> &f) {
+  double scale = std::max(Lp, Lm);
+  for (int k = 0; k < n; ++k) scale = std::max(scale, std::fabs(r[k]));
   const double tol = 1e-10 * scale;
   int sliding = 0;
   for (int k = 0; k < n; ++k) {
@@ -39,11 +38,11 @@ int expect_limit_conditions(int n, double hK0, double hKr, const std::vector<dou
                       hKr * ((k > 0 ? v[k - 1] : 0.0) + (k + 1 < n ? v[k + 1] : 0.0));
     EXPECT_NEAR(f[k] + Kv, r[k], tol) << k;
     if (v[k] == 0.0) {
-      EXPECT_LE(f[k], Lp[k] + tol) << k;
-      EXPECT_GE(f[k], -Lm[k] - tol) << k;
+      EXPECT_LE(f[k], Lp + tol) << k;
+      EXPECT_GE(f[k], -Lm - tol) << k;
     } else {
       ++sliding;
-      EXPECT_NEAR(f[k], v[k] > 0.0 ? Lp[k] : -Lm[k], tol) << k;
+      EXPECT_NEAR(f[k], v[k] > 0.0 ? Lp : -Lm, tol) << k;
     }
   }
   return sliding;
@@ -84,8 +83,7 @@ TEST(FrictionLimit, HarshStsStepsSettleAndSatisfyTheirConditions) {
     }
     rtb_chain_apply(n, p.Kpa, p.Kr, v.data(), f.data());
     for (int k = 0; k < n; ++k) f[k] = r[k] - f[k];
-    const std::vector<double> L(n, p.Ff);
-    sliding += expect_limit_conditions(n, p.Kpa + p.Kr, p.Kr, r, L, L, v, f);
+    sliding += expect_limit_conditions(n, p.Kpa + p.Kr, p.Kr, r, p.Ff, p.Ff, v, f);
     // Tangent: central differences, where both sides keep the same set.
     const double e = 1e-6 * std::max({std::fabs(xb), std::fabs(y_old[0]), p.Ff / p.Kpa});
     std::vector<double> yp(n), ym(n);
@@ -109,17 +107,14 @@ TEST(FrictionLimit, SatisfiesItsConditionsWithAsymmetricLevels) {
   for (int trial = 0; trial < 600; ++trial) {
     const int n = 1 + static_cast<int>(g() % 32);
     const double hKr = log_uniform(g, 1e-2, 1e2), hK0 = hKr + log_uniform(g, 1e-2, 1e4);
-    std::vector<double> r(n), Lp(n), Lm(n), v(n), f(n);
+    std::vector<double> r(n), v(n), f(n);
     std::vector<int> act(n);
-    for (int k = 0; k < n; ++k) {
-      const double a = 0.9 * u(g);
-      Lp[k] = 1.0 + a;
-      Lm[k] = 1.0 - a;
+    const double a = 0.9 * u(g), Lp = 1.0 + a, Lm = 1.0 - a;
+    for (int k = 0; k < n; ++k)
       r[k] = u(g) * (k == 0 ? log_uniform(g, 0.1, 1e3) : log_uniform(g, 0.05, 3.0));
-    }
     const int trial_solves = trial % 2 ? 3 : 0;
     const int solves =
-        rtb_friction_limit(n, hK0, hKr, r.data(), Lp.data(), Lm.data(), trial_solves,
+        rtb_friction_limit(n, hK0, hKr, r.data(), Lp, Lm, trial_solves,
                            RTB_STS_MAX_ITERS(n), act.data(), v.data(), f.data());
     SCOPED_TRACE(testing::Message() << "trial " << trial << ", N " << n);
     ASSERT_GT(solves, 0);
@@ -138,12 +133,12 @@ TEST(FrictionLimit, SatisfiesItsConditionsWithAsymmetricLevels) {
 TEST(FrictionLimit, ChainDraggedByItsFirstCellSettlesInFewSolves) {
   const int n = 25;
   const double hK0 = 4.0712157415069896, hKr = 3.836901166456228;
-  std::vector<double> r(n), L(n, 3.63), v(n), f(n);
+  std::vector<double> r(n), v(n), f(n);
   std::vector<int> act(n);
   r[0] = 425.75;
   for (int k = 1; k < n; ++k) r[k] = -3.6712 + 2e-5 * k;
   const int solves =
-      rtb_friction_limit(n, hK0, hKr, r.data(), L.data(), L.data(), 0, RTB_STS_MAX_ITERS(n),
+      rtb_friction_limit(n, hK0, hKr, r.data(), 3.63, 3.63, 0, RTB_STS_MAX_ITERS(n),
                          act.data(), v.data(), f.data());
   EXPECT_GT(solves, 0);
   EXPECT_LE(solves, 4);

@@ -25,11 +25,11 @@
 extern "C" {
 #endif
 
-/* Solve the limit stage f + h K v = r, |f_k| <= L_k, f_k = +-L_k where v_k
- * != 0 (Lp_k moving up, Lm_k down), for the first n cells of the chain
+/* Solve the limit stage f + h K v = r, -Lm <= f_k <= Lp, f_k = Lp where
+ * v_k > 0 and -Lm where v_k < 0, for the first n cells of the chain
  * (hK0 = h (Kpa + Kr), hKr = h Kr; v beyond n is 0). Phase 0, up to
  * trial_solves solves: the plain method from the elastic trial's active set
- * (the cells whose |r_k| is past their level), right in one solve when
+ * (the cells whose r_k is past a level), right in one solve when
  * little slides (the STS return map's common case, which passes its whole
  * cap), left as soon as it cycles (a set seen two solves ago, or a cell
  * reversing for the second time). Phase 1: from the set of the level-free
@@ -37,14 +37,14 @@ extern "C" {
  * to within the boundary cells when a pulled cell drags the chain (the
  * near-friction stage's case, which passes trial_solves = 0). act receives
  * the active set of the last solve, -1 / 0 / +1 (sliding down / still /
- * up); v and f that solve's velocities and forces (f = +-L_k exactly where
+ * up); v and f that solve's velocities and forces (f = Lp or -Lm exactly where
  * a cell slides). At most max_solves tridiagonal solves (>= 2, or >= 1 with
  * a trial; the level-free phase needs two, and is skipped without). Returns the
  * solves used (> 0) when the active set settled, minus that number when it
  * did not, 0 on a singular system (v, f then unset). */
-int rtb_friction_limit(int n, rtb_real hK0, rtb_real hKr, const rtb_real *r, const rtb_real *Lp,
-                       const rtb_real *Lm, int trial_solves, int max_solves, int *act,
-                       rtb_real *v, rtb_real *f);
+int rtb_friction_limit(int n, rtb_real hK0, rtb_real hKr, const rtb_real *r, rtb_real Lp,
+                       rtb_real Lm, int trial_solves, int max_solves, int *act, rtb_real *v,
+                       rtb_real *f);
 
 /* dv_0 / d r_0 times b0 for the active set act: the first cell's response
  * to a load b0 on it, still cells held (the STS step's tangent dy1/dxb with

@@ -370,11 +370,9 @@ bool friction_start(const Chain &ch, const rtb_real *r, rtb_real done, const Ite
   const int room = *budget / ch.sweep - 1; /* leave the sweep that follows */
   const int max_solves = room < RTB_STS_MAX_ITERS(n) ? room : RTB_STS_MAX_ITERS(n);
   if (max_solves < 2) return false;
-  rtb_real Lp[RTB_MAX_CELLS], Lm[RTB_MAX_CELLS];
   int act[RTB_MAX_CELLS];
-  for (int k = 0; k < n; ++k) Lp[k] = ch.law.C0p, Lm[k] = ch.law.C0m;
-  const int solves =
-      rtb_friction_limit(n, ch.hK0, ch.hKr, r, Lp, Lm, 0, max_solves, act, t->v, t->f);
+  const int solves = rtb_friction_limit(n, ch.hK0, ch.hKr, r, ch.law.C0p, ch.law.C0m, 0,
+                                        max_solves, act, t->v, t->f);
   *budget -= (solves < 0 ? -solves : solves) * ch.sweep;
   if (solves == 0) return false;
   for (int k = 0; k < n; ++k) t->steep[k] = act[k] != 0;

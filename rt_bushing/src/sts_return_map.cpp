@@ -39,15 +39,12 @@ extern "C" rtb_status rtb_sts_solve_capped(const rtb_params *p, const rtb_real *
   if (n < 1 || n > RTB_MAX_CELLS) return RTB_ERR_STATE;
   if (max_iters < 1) max_iters = 1;
   const rtb_real Kpa = p->Kpa, Kr = p->Kr;
-  rtb_real r[RTB_MAX_CELLS], L[RTB_MAX_CELLS], dy[RTB_MAX_CELLS], f[RTB_MAX_CELLS];
+  rtb_real r[RTB_MAX_CELLS], dy[RTB_MAX_CELLS], f[RTB_MAX_CELLS];
   int act[RTB_MAX_CELLS]; /* -1 sliding down, 0 stuck, +1 sliding up */
   /* r = b - K y_old: the friction forces if nothing slid (the elastic trial). */
   rtb_chain_apply(n, Kpa, Kr, y_old, r);
-  for (int k = 0; k < n; ++k) {
-    r[k] = (k == 0 ? Kpa * xb_new : 0.0) - r[k];
-    L[k] = p->Ff;
-  }
-  const int solves = rtb_friction_limit(n, Kpa + Kr, Kr, r, L, L, max_iters, max_iters,
+  for (int k = 0; k < n; ++k) r[k] = (k == 0 ? Kpa * xb_new : 0.0) - r[k];
+  const int solves = rtb_friction_limit(n, Kpa + Kr, Kr, r, p->Ff, p->Ff, max_iters, max_iters,
                                         act, dy, f);
   if (solves == 0) return RTB_ERR_OVERFLOW;
   /* Settled or not, the last solve's DOFs and their own tangent, so that the
