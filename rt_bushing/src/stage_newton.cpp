@@ -59,7 +59,8 @@
  * work units per step -> 178-198, 8.5-11.8 -> 2.7 Newton iterations, 10-20
  * -> 0.1-0.2 halvings, 1-7 unconverged steps of 8000 -> none, median step
  * 10-18 -> 3.4-6 us. BM_RandomConfigs' unconverged share: 1.53% -> 1.35% at
- * the default budget, 16.5% -> 12.2% at 640 units. Not with the eq. (14)
+ * the default budget, 16.5% -> 12.2% at 640 units from this start alone
+ * (1.05% and 11.5% with the STS return map on the same solver). Not with the eq. (14)
  * smoothing, where it cost more than it saved (CellRowSolve's smoothed
  * jumps: 600 -> 830 units per step), nor above alpha = 0.1, where the level
  * changes too much with the velocity for the limit to help (alpha <= 0.3:
