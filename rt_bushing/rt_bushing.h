@@ -257,8 +257,10 @@ typedef struct rtb_params {
  * velocity, rest). rtb_step_info.work reports what a step spent. When the
  * budget runs out the step commits its best iterate and returns
  * RTB_NOT_CONVERGED. A 1 kHz step at N = 15 uses about two sweeps of its
- * moving cells (~26 units at the default tolerance); with every extension,
- * smoothing and a clearance ~1000-2000.
+ * moving cells (~22 units at the default tolerance, BM_Extension's input);
+ * with the smoothing s = 100 a median of 307 (session 36; 387 before), with
+ * every extension, smoothing and a clearance 360, at most 1874 (459 and
+ * 2496 before: tests/smoothed_law_cost_test.cpp).
  * A unit costs ~26 ns on the benchmark machine (a 2-vCPU AMD EPYC guest),
  * so the default bounds a step at ~110 us; a host that needs a tighter bound
  * sets max_work (per call, so per element; or builds with -DRTB_STEP_WORK=W

@@ -32,6 +32,21 @@ inline rtb_params paper_params(int model, int cells = RTB_DEFAULT_CELLS,
   return p;
 }
 
+// The extensions of BM_Extension's "all" set (bench/worst_case_bench.cpp)
+// but the eq. (14) smoothing and the softening spring: a cubic spring,
+// tension/compression asymmetry, a Maxwell branch, a parallel dashpot,
+// inertia, a 0.05 mm clearance and Mullins softening.
+inline void add_extensions(rtb_params *p) {
+  p->k3 = 50.0;
+  p->k_asym = 200.0;
+  p->maxwell_k = 300.0;
+  p->maxwell_tau = 0.05;
+  p->viscous_c = 2.0;
+  p->mass = 1e-3;
+  p->backlash = 0.05;
+  p->mullins = 0.3;
+}
+
 inline rtb_params sts_params(int cells, double K0, double Kpa, double Kr, double Ff) {
   rtb_params p = paper_params(RTB_MODEL_STS, cells);
   p.K0 = K0;

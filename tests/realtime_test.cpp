@@ -28,6 +28,7 @@
 #include <cstring>
 #include <new>
 
+#include "physics_helpers.h"
 #include "rt_bushing/rt_bushing.h"
 
 #if defined(__SANITIZE_ADDRESS__)
@@ -215,16 +216,7 @@ rtb_params make_params(const Scenario &sc) {
   rtb_params_default(&p, sc.model);
   p.integrator = sc.integrator;
   p.cells = sc.cells;
-  if (sc.extensions) {
-    p.k3 = 50.0;
-    p.k_asym = 200.0;
-    p.maxwell_k = 300.0;
-    p.maxwell_tau = 0.05;
-    p.viscous_c = 2.0;
-    p.mass = 1e-3;
-    p.backlash = 0.05;
-    p.mullins = 0.3;
-  }
+  if (sc.extensions) rtbtest::add_extensions(&p);
   return p;
 }
 

@@ -92,15 +92,22 @@ static inline rtb_real rtb_slaw_log_abs(rtb_real v, rtb_real s) {
 
 /* psi_s(v) and (if dfdv) psi_s'(v) = C0 |v|_s^alpha (sign_s' + alpha
  * sign_s^2 / |v|_s), sign_s' = 2 s e / (1 + e)^2. Both terms are >= 0, so
- * the slope is never negative; it is > 0 wherever psi_s is finite. */
-static inline rtb_real rtb_slaw_force(rtb_real v, rtb_real C0, rtb_real alpha, rtb_real s,
-                                    rtb_real *dfdv) {
+ * the slope is never negative; it is > 0 wherever psi_s is finite.
+ * If curv (needs dfdv): psi_s''(|v|) / psi_s'(|v|), for the inverse's
+ * stopping rule (no further transcendental). With S = sign_s, A = |v|_s (A' = S),
+ * S' = (s/2)(1 - S^2), S'' = -s S S' and P = A^alpha (P' = alpha P S / A):
+ *   psi_s'' / (C0 P) = (alpha S / A)(S' + alpha S^2/A) + S''
+ *                      + alpha (2 S S' / A - S^3 / A^2);
+ * in the sharp regime (alpha - 1)/|v|, the terms in e dropped. */
+static inline rtb_real rtb_slaw_force_c(rtb_real v, rtb_real C0, rtb_real alpha, rtb_real s,
+                                        rtb_real *dfdv, rtb_real *curv) {
   const rtb_real a = fabs(v), sa = s * a;
   if (sa >= RTB_SLAW_SHARP) {
     const rtb_real m = rtb_law_force(a, C0, alpha), e = exp(-sa);
     if (dfdv) { /* = C0 |v|^alpha (sign_s' + alpha/|v|); e == 0 or |v| = inf: no 0 * inf */
       const rtb_real t = e > 0.0 ? 2.0 * sa * e / ((1.0 + e) * (1.0 + e)) : 0.0;
       *dfdv = a <= RTB_REAL_MAX ? m / a * (t + alpha) : 0.0;
+      if (curv) *curv = (alpha - 1.0) / a;
     }
     return v < 0.0 ? -m : m;
   }
@@ -114,9 +121,18 @@ static inline rtb_real rtb_slaw_force(rtb_real v, rtb_real C0, rtb_real alpha, r
     const rtb_real dS = 2.0 * s * e / ((1.0 + e) * (1.0 + e));
     const rtb_real PA = A <= RTB_REAL_MAX ? P / A : exp((alpha - 1.0) * lnA); /* |v|_s^(alpha-1) */
     *dfdv = C0 * (dS * P + alpha * S * S * PA);
+    if (curv) {
+      const rtb_real iA = 1.0 / A, g = dS + alpha * S * S * iA; /* psi_s' / (C0 P) */
+      *curv = (alpha * S * iA * g - s * S * dS + alpha * S * iA * (2.0 * dS - S * S * iA)) / g;
+    }
   }
   const rtb_real m = C0 * S * P;
   return v < 0.0 ? -m : m;
+}
+
+static inline rtb_real rtb_slaw_force(rtb_real v, rtb_real C0, rtb_real alpha, rtb_real s,
+                                      rtb_real *dfdv) {
+  return rtb_slaw_force_c(v, C0, alpha, s, dfdv, 0);
 }
 
 /* v = phi_s(f), the inverse of psi_s, by a safeguarded scalar Newton
@@ -136,16 +152,24 @@ static inline rtb_real rtb_slaw_force(rtb_real v, rtb_real C0, rtb_real alpha, r
  * psi_s evaluations on average. Bounded: at most RTB_SLAW_INV_ITERS
  * evaluations. Returns +-inf (a rejected trial point) only if vu overflows. */
 #define RTB_SLAW_INV_ITERS 80
+#ifdef RTB_SINGLE
+#define RTB_SLAW_QUAD_STEP 3e-4f
+#else
+#define RTB_SLAW_QUAD_STEP 5e-7
+#endif
 /* The inverse with an explicit evaluation cap: at most max_evals (>= 1)
- * psi_s evaluations; *evals receives the number used (>= 1 whenever f != 0,
+ * psi_s evaluations, and a force tolerance ftol >= 0: it stops once
+ * |psi_s(v) - |f|| <= ftol at an evaluated v (the stage solver passes a
+ * hundredth of its own tolerance: an inverse exact to rounding is wasted on
+ * a Newton iterate that is not; 0: to rounding); *evals receives the number used (>= 1 whenever f != 0,
  * so a caller's work count stays honest) and *dvdf (may be NULL) 1/psi_s'
  * at the last evaluated point (capped at RTB_REAL_MAX), which differs from the
  * returned v by at most the final Newton correction (rounding level when
  * converged). When the cap ends the iteration the best bracketed iterate is
  * returned. */
 static inline rtb_real rtb_slaw_velocity_n(rtb_real f, rtb_real C0, rtb_real alpha, rtb_real s,
-                                         rtb_real guess, int max_evals, int *evals,
-                                         rtb_real *dvdf) {
+                                         rtb_real guess, int max_evals, rtb_real ftol,
+                                         int *evals, rtb_real *dvdf) {
   *evals = 1;
   if (dvdf) *dvdf = 0.0;
   if (f == 0.0) return 0.0;
@@ -164,8 +188,8 @@ static inline rtb_real rtb_slaw_velocity_n(rtb_real f, rtb_real C0, rtb_real alp
   rtb_real v = (g > lo && g < hi) ? g : (vu < lo ? lo : (vu > hi ? hi : vu));
   int it = 0;
   while (it < max_evals) {
-    rtb_real d;
-    const rtb_real r = rtb_slaw_force(v, C0, alpha, s, &d) - m;
+    rtb_real d, c;
+    const rtb_real r = rtb_slaw_force_c(v, C0, alpha, s, &d, &c) - m;
     ++it;
     if (dvdf) { const rtb_real D = 1.0 / d; *dvdf = D <= RTB_REAL_MAX ? D : RTB_REAL_MAX; }
     if (r == 0.0) break;
@@ -173,9 +197,27 @@ static inline rtb_real rtb_slaw_velocity_n(rtb_real f, rtb_real C0, rtb_real alp
     rtb_real vn = v - r / d;
     /* Converged: the step or the force residual is at rounding level (the
      * inverse amplifies rounding by up to 1/alpha, so a step test alone
-     * could idle until the bracket collapses). */
-    if (fabs(vn - v) <= 2.0 * RTB_REAL_EPSILON * v || fabs(r) <= 4.0 * RTB_REAL_EPSILON * m) {
-      if (vn >= lo && vn <= hi) v = vn;
+     * could idle until the bracket collapses), or what this Newton step
+     * leaves, (psi_s'' / 2 psi_s') step^2, is (issue #11: the evaluation
+     * that would only confirm it is skipped; the slope is moved to vn to
+     * first order). That estimate holds for a small relative step only:
+     * the third-order term, ~ (s v)^2 (step/v)^3 / 6 of v near s v = 40
+     * and ~ (step/v)^3 in the power-law regime, is then below rounding
+     * too (RTB_SLAW_QUAD_STEP); from a far start in the linear regime,
+     * where psi_s'' vanishes at v = 0, it would stop at once. */
+    const rtb_real dv = vn - v;
+    if (fabs(dv) <= 2.0 * RTB_REAL_EPSILON * v || fabs(r) <= 4.0 * RTB_REAL_EPSILON * m ||
+        fabs(r) <= ftol ||
+        (fabs(dv) <= RTB_SLAW_QUAD_STEP * vn &&
+         0.5 * fabs(c) * dv * dv <= 2.0 * RTB_REAL_EPSILON * vn)) {
+      if (vn >= lo && vn <= hi) {
+        v = vn;
+        const rtb_real moved = 1.0 + c * dv; /* psi_s'(vn) / psi_s'(v) to first order */
+        if (dvdf && moved > 0.5 && moved < 2.0) {
+          const rtb_real D = 1.0 / (d * moved);
+          *dvdf = D <= RTB_REAL_MAX ? D : RTB_REAL_MAX;
+        }
+      }
       break;
     }
     /* Outside the bracket (or NaN): bisect, geometrically when the bracket
@@ -192,7 +234,7 @@ static inline rtb_real rtb_slaw_velocity_n(rtb_real f, rtb_real C0, rtb_real alp
 static inline rtb_real rtb_slaw_velocity(rtb_real f, rtb_real C0, rtb_real alpha, rtb_real s,
                                        rtb_real guess) {
   int evals;
-  return rtb_slaw_velocity_n(f, C0, alpha, s, guess, RTB_SLAW_INV_ITERS, &evals, 0);
+  return rtb_slaw_velocity_n(f, C0, alpha, s, guess, RTB_SLAW_INV_ITERS, 0.0, &evals, 0);
 }
 
 /* ------------------------------------------------------------------------
@@ -298,26 +340,39 @@ static inline rtb_real rtb_law_eval_pow_f(const rtb_law *L, rtb_real f, rtb_real
   return f > 0.0 ? m : -m;
 }
 
-/* v = phi(f) and *D = phi'(f). `guess` warm-starts the smoothed inverse;
- * *cap: in, the most psi_s evaluations it may use (>= 1); out, the count
- * used (1 for eq. (1)). */
-static inline rtb_real rtb_law_eval_f(const rtb_law *L, rtb_real f, rtb_real guess, rtb_real *D,
-                                    int *cap) {
+/* v = phi(f) and *D = phi'(f). `guess` warm-starts the smoothed inverse,
+ * ftol its force tolerance (rtb_slaw_velocity_n); *cap: in, the most psi_s
+ * evaluations it may use (>= 1); out, the count used (1 for eq. (1)). */
+static inline rtb_real rtb_law_eval_f(const rtb_law *L, rtb_real f, rtb_real guess,
+                                      rtb_real ftol, rtb_real *D, int *cap) {
   if (L->s > 0.0) {
     const int max_evals = *cap < 1 ? 1 : (*cap < RTB_SLAW_INV_ITERS ? *cap : RTB_SLAW_INV_ITERS);
     return rtb_slaw_velocity_n(f, f < 0.0 ? L->C0m : L->C0p, L->alpha, L->s, guess, max_evals,
-                               cap, D);
+                               ftol, cap, D);
   }
   *cap = 1;
   return rtb_law_eval_pow_f(L, f, D);
 }
 
-/* phi'(f) of a pair (f, v) already on the curve; *evals: law evaluations
- * this took (0 for eq. (1), which needs only a division). */
-static inline rtb_real rtb_law_dvdf_pair(const rtb_law *L, rtb_real f, rtb_real v, int *evals) {
-  if (!(L->s > 0.0)) { *evals = 0; return rtb_law_dvdf(f, v, L->alpha); }
-  *evals = 1;
-  return rtb_dashpot_dvdf(f, v, f < 0.0 ? L->C0m : L->C0p, L->alpha, L->s);
+/* phi'(f) of a pair (f, v) already on the curve; *units: what this cost in
+ * eq. (1) evaluations (see rtb_law_unit): 0 for eq. (1), which needs only a
+ * division; for the smoothed law 1 in its sharp regime (s |v| >=
+ * RTB_SLAW_SHARP), where psi_s is eq. (1) to rounding and its slope's
+ * exp(-s|v|) term below 4e-13 of it (alpha >= RTB_ALPHA_MIN): eq. (1)'s
+ * slope at v, |v| / (alpha psi(v)), one log and one exp; else a smoothed
+ * evaluation (`full` units). From v alone: a pair off the curve (an
+ * unconverged last step) still gets the slope of its velocity. */
+static inline rtb_real rtb_law_dvdf_pair(const rtb_law *L, rtb_real f, rtb_real v, int full,
+                                         int *units) {
+  if (!(L->s > 0.0)) { *units = 0; return rtb_law_dvdf(f, v, L->alpha); }
+  const rtb_real a = fabs(v);
+  if (L->s * a >= RTB_SLAW_SHARP && a <= RTB_REAL_MAX) {
+    *units = 1;
+    const rtb_real m = (v < 0.0 ? L->C0m : L->C0p) * exp(L->alpha * log(a)); /* eq. (1) */
+    return m > 0.0 ? a / (L->alpha * m) : RTB_REAL_MAX;
+  }
+  *units = full;
+  return rtb_dashpot_dvdf(f, v, v < 0.0 ? L->C0m : L->C0p, L->alpha, L->s);
 }
 
 #endif

@@ -67,11 +67,13 @@ rtb_status rtb_chain_advance(const rtb_params *p, const rtb_settings *set,
                              rtb_stage st[2], int *budget);
 /* The same, with the first stage started from the pair (f1, v1) (both or
  * neither NULL) instead of the last step's end: another solution of the
- * first stage for a nearby xb_new. f1/v1 may alias st[0].f/st[0].v. */
+ * first stage for a nearby xb_new, with its slopes D1 (may be NULL: then
+ * computed from the pair, which costs a smoothed law an evaluation per
+ * cell). f1/v1/D1 may alias st[0].f/st[0].v/st[0].D. */
 rtb_status rtb_chain_advance_from(const rtb_params *p, const rtb_settings *set,
                                   const rtb_state *s, rtb_real xb_new, rtb_real dt,
-                                  const rtb_real *f1, const rtb_real *v1, rtb_stage st[2],
-                                  int *budget);
+                                  const rtb_real *f1, const rtb_real *v1, const rtb_real *D1,
+                                  rtb_stage st[2], int *budget);
 
 /* Rate-independent STS step (section 3.1): exact backward-Euler return map of
  * the friction chain by a primal-dual active-set method. */
