@@ -261,7 +261,9 @@ typedef struct rtb_params {
  * with the smoothing s = 100 a median of 307 (session 36; 387 before), with
  * every extension, smoothing and a clearance 360, at most 1874 (459 and
  * 2496 before: tests/smoothed_law_cost_test.cpp).
- * A unit costs ~26 ns on the benchmark machine (a 2-vCPU AMD EPYC guest),
+ * A unit costs ~26-28 ns on the benchmark machine (a 2-vCPU AMD EPYC guest;
+ * session 36's cheaper smoothed inverse fits ~5% more Newton iterations,
+ * whose linear algebra is not counted, into the same units),
  * so the default bounds a step at ~110 us; a host that needs a tighter bound
  * sets max_work (per call, so per element; or builds with -DRTB_STEP_WORK=W
  * to change the default): at 640 units the slowest of 90 000 steps over
