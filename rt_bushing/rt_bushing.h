@@ -259,7 +259,7 @@ typedef struct rtb_params {
  * RTB_NOT_CONVERGED. A 1 kHz step at N = 15 uses about two sweeps of its
  * moving cells (~22 units at the default tolerance, BM_Extension's input);
  * with the smoothing s = 100 a median of 307 (session 36; 387 before), with
- * every extension, smoothing and a clearance 360, at most 1874 (459 and
+ * every extension, smoothing and a clearance 310, at most 1135 (459 and
  * 2496 before: tests/smoothed_law_cost_test.cpp).
  * A unit costs ~26-28 ns on the benchmark machine (a 2-vCPU AMD EPYC guest;
  * session 36's cheaper smoothed inverse fits ~5% more Newton iterations,

@@ -97,7 +97,7 @@ TEST(SmoothedStep, WorkPerStepOnTheExtensionBenchmarkInput) {
   // Session 35's library on the same input: smoothing s = 100 alone, median
   // 387 and 99th percentile 480 units; with every extension (a clearance's
   // searches solved the smoothed chain up to five times per step) 459 and
-  // max 2496. Measured since: 307 / 378, and 310 / 1118 with the clearance
+  // max 2496. Measured since: 307 / 378, and 310 / 1135 with the clearance
   // search of clearance_search_test.cpp.
   rtb_params p;
   rtb_params_default(&p, RTB_MODEL_RT);

@@ -161,8 +161,9 @@ static inline rtb_real rtb_slaw_force(rtb_real v, rtb_real C0, rtb_real alpha, r
  * psi_s evaluations, and a force tolerance ftol >= 0: it stops once
  * |psi_s(v) - |f|| <= ftol at an evaluated v (the stage solver passes a
  * hundredth of its own tolerance: an inverse exact to rounding is wasted on
- * a Newton iterate that is not; 0: to rounding); *evals receives the number used (>= 1 whenever f != 0,
- * so a caller's work count stays honest) and *dvdf (may be NULL) 1/psi_s'
+ * a Newton iterate that is not; 0: to rounding); *evals receives the
+ * number used (>= 1 whenever f != 0, so a caller's work count stays
+ * honest) and *dvdf (may be NULL) 1/psi_s'
  * at the last evaluated point (capped at RTB_REAL_MAX), which differs from the
  * returned v by at most the final Newton correction (rounding level when
  * converged). When the cap ends the iteration the best bracketed iterate is

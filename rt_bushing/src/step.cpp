@@ -292,28 +292,31 @@ static rtb_status resolve_gap(const rtb_state *s, const rtb_params *p, const rtb
    * only when Newton's point leaves the gap on its side (session 36: the
    * old search checked the far contact first, one response more on every
    * floating step). With the contact start above, BM_Extension's clearance
-   * input takes 1.04 responses per step, at most 4 (1.51 and 5 before),
-   * and every extension with the smoothing at most 1118 work units per
-   * step (2496; tests/clearance_search_test.cpp). */
+   * input takes 1.05 responses per step, at most 4 (1.51 and 5 before),
+   * and every extension with the smoothing at most 1135 work units per
+   * step (2496; tests/clearance_search_test.cpp, smoothed_law_cost_test.cpp).
+   * A slack strip without a clearance (backlash 0) never starts at its
+   * contact point: RTB_CONTACT_REACH is in gap widths. */
   *contact = 0;
-  for (int it = 0; it < iters; ++it) {
+  for (int it = 0; it < iters;) {
     if (!(nx > a && nx < b) && !(a_known && b_known)) {
-      const bool low = !a_known && !(nx > a); /* else the high end, or both unknown: NaN */
-      const rtb_real end = low || b_known ? a : b;
+      /* The one end not yet known, a contact point: the check is not one
+       * of the search's iterations. */
+      const rtb_real end = a_known ? b : a;
       if (*budget < sweep) return RTB_NOT_CONVERGED;
       respond(s, p, set, sp, end, dt, true, budget, r, cost); /* cold: as without a gap */
       *xb_out = end;
       *contact = end == g.lo ? 1 : -1;
       if (r->status < 0 || (end == g.lo ? r->F >= 0.0 : r->F <= 0.0)) return RTB_OK;
       *contact = 0;
-      if (end == g.lo) a_known = true; else b_known = true;
+      a_known = b_known = true;
       nx = r->dF > 0.0 ? end - r->F / r->dF : NAN;
-      --it; /* the contact checks are not the search's iterations */
       continue;
     }
     if (!(nx > a && nx < b)) nx = 0.5 * (a + b);
     if (*budget < sweep) return RTB_NOT_CONVERGED; /* r: the response at *xb_out */
     xb = nx;
+    ++it;
     respond(s, p, set, sp, xb, dt, true, budget, r, cost, true);
     *xb_out = xb;
     if (r->status < 0) return RTB_OK; /* the caller returns r->status */
