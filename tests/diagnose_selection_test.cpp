@@ -219,6 +219,20 @@ TEST(JointFitOrder, ANearTieAtTheCutIsFittedToo) {
   EXPECT_EQ(diag::joint_fit_order(r, 2.0, 2, 0.9, ""), (std::vector<size_t>{1, 0, 2, 3}));
   EXPECT_EQ(diag::joint_fit_order(r, 2.0, 2, 1.0, ""), (std::vector<size_t>{1, 0}));
   EXPECT_EQ(diag::joint_fit_order(r, 2.0, 1, 0.9, ""), (std::vector<size_t>{1}));
+  // The tie is on what each adds to the model's own step, common to all
+  // screens of a round (BM_Diagnose's maxwell case, second round: 0.3221
+  // common; the third kept adds 0.0324, the next 0.0244, no tie). The
+  // mullins+delay_s13 screens over their common 0.0292 still tie.
+  auto over = [&](std::vector<CandidateOutcome> v, double model) {
+    for (CandidateOutcome &o : v) o.screen.dJ_model = model;
+    return v;
+  };
+  const std::vector<CandidateOutcome> m = over(
+      {screened("viscous", 0.4402), screened("delay", 0.4625), screened("inertia", 0.3545),
+       screened("softening", 0.3465), screened("relaxation_spectrum", 0.3323)}, 0.3221);
+  EXPECT_EQ(diag::joint_fit_order(m, 2.0, 3, 0.9, ""), (std::vector<size_t>{1, 0, 2}));
+  EXPECT_EQ(diag::joint_fit_order(over(m, 0.0), 2.0, 3, 0.9, ""), (std::vector<size_t>{1, 0, 2, 3, 4}));
+  EXPECT_EQ(diag::joint_fit_order(over(r, 0.0292), 2.0, 2, 0.9, ""), (std::vector<size_t>{1, 0, 2}));
   // A cut at zero reduction is no tie: the screens that found nothing stay out.
   const std::vector<CandidateOutcome> z = {screened("slack", 0.0), screened("offset", 0.3),
                                            screened("backlash", 0.0), screened("delay", 0.0)};

@@ -187,7 +187,8 @@ nlohmann::ordered_json diagnosis_json(const DiagnoseResult &R, const std::vector
       e["error_fit"] = num(R.baseline_error_fit * std::sqrt(std::fmax(0.0, 1.0 - c.screen.dJ)));
     }
     e["screen"] = {{"amplitude", c.screen.value}, {"z", num(c.screen.z)},
-                   {"misfit_reduction", num(c.screen.dJ)}, {"plausible", c.screen.plausible}};
+                   {"misfit_reduction", num(c.screen.dJ)},
+                   {"model_reduction", num(c.screen.dJ_model)}, {"plausible", c.screen.plausible}};
     e["error_holdout"] = num(c.error_holdout);
     e["error_holdout_trimmed"] = num(c.error_holdout_trimmed);
     e["criterion"] = {{"delta_bic", num(c.dbic)}, {"holdout_gain", num(c.gain)},

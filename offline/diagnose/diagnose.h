@@ -127,7 +127,8 @@ struct DiagnoseOptions {
   // backlash+cubic, maxwell+offset) leave 0.05-0.39.
   double withdraw_record_scale_share = 0.6;
   // Stage 5e (cause_pair.cpp): when no single word pays in the first round
-  // and the baseline is above pair_above_floor times the floor, the
+  // and the baseline is above pair_above_floor times the floor (of the
+  // held-out records or of the fit records), the
   // pair_leads first-round words with the largest held-out gains (at least
   // pair_lead_gain) are each tried with a second word. Three leads from 3%:
   // with the displacement filtered (stage 0), blindgen mullins+delay_s5's
@@ -153,7 +154,8 @@ struct DiagnoseOptions {
   // linearized gain, seed 6).
   int joint_fits = 5;
   int joint_fits_next = 3;
-  // ... and those screened within this factor of the last one kept: the
+  // ... and those screened within this factor of the last one kept, in
+  // what each adds to the model's own step (screen.h dJ_model): the
   // screen is a linearization or a 6-iteration fit, so a near tie at the cut
   // is no ranking (blindgen mullins+delay_s13: the erf Mullins loss screened
   // 0.0690 against an offset's 0.0698, sixth, unfitted; fitted, it takes the

@@ -26,6 +26,8 @@ struct CandidateScreen {
   double value = 0.0;         // best effect size with the model held
   double z = 0.0;             // its significance
   double dJ = 0.0;            // misfit reduction it brings (relative to the model's J)
+  double dJ_model = 0.0;      // ... that the model's own parameters bring alone (the same
+                              // for every candidate of a screen): dJ's common part
   bool plausible = true;      // sign admissible (e.g. damping >= 0)
   ExtModel start;             // start point of the joint fit
   double seconds = 0.0;       // wall time of the screen

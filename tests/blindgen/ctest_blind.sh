@@ -26,7 +26,11 @@
 #                              held-out one at its floor (`none` before the
 #                              fit records decided there);
 #   delay,asymmetry:14         a third word whose size the revisions took to
-#                              nothing (named before drop_vanished).
+#                              nothing (named before drop_vanished);
+#   mullins,delay:21           a pair whose held-out record is twice as noisy
+#                              as the fit ones: the baseline 4.6x the fit
+#                              floor, 2.4x the held-out one (`unexplained`
+#                              before the pair stage looked at both floors).
 # Exit 77 (ctest: skipped) without numpy and scipy (python3-numpy,
 # python3-scipy; `make deps` installs them).
 set -u
