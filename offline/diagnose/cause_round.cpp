@@ -343,7 +343,7 @@ std::vector<size_t> joint_fit_order(const std::vector<CandidateOutcome> &out, do
   // no reduction at all is no tie: short-fit screens clamp at 0, and every
   // one of them would come with it.
   auto added = [&](size_t i) { return out[i].screen.dJ - out[i].screen.dJ_model; };
-  if (keep > 0 && out[order[keep - 1]].screen.dJ > 0.0 && added(order[keep - 1]) > 0.0) {
+  if (keep > 0 && added(order[keep - 1]) > 0.0) {  // dJ_model >= 0
     const double cut = tie * added(order[keep - 1]);
     while (keep < order.size() && added(order[keep]) >= cut) ++keep;
   }

@@ -39,6 +39,20 @@ Columns screen_columns(const ExtModel &m, const std::vector<Record> &recs, const
   return c;
 }
 
+// Least squares min |r + A th| with the columns of A scaled to unit norm
+// (th in scaled units: the unknown is th / cs).
+struct ScaledLsq {
+  Eigen::VectorXd cs, th, res;
+  Eigen::LDLT<Eigen::MatrixXd> ldlt;
+  ScaledLsq(const Eigen::MatrixXd &A, const Eigen::VectorXd &r)
+      : cs(A.colwise().norm().transpose().cwiseMax(1e-300)) {
+    const Eigen::MatrixXd As = A * cs.cwiseInverse().asDiagonal();
+    ldlt.compute(As.transpose() * As);
+    th = -ldlt.solve(As.transpose() * r);
+    res = r + As * th;
+  }
+};
+
 // Score test: the linearized least squares with the model's columns and the
 // candidate's together; the candidate's amplitude is the first of its
 // columns. *model_step receives the accompanying step of the model's
@@ -48,19 +62,15 @@ void joint_linear(const Columns &base, const Eigen::MatrixXd &g, CandidateScreen
   const Eigen::Index m = base.r.size(), P = base.g.cols(), q = g.cols();
   Eigen::MatrixXd A(m, P + q);
   A << base.g, g;
-  const Eigen::VectorXd cs = A.colwise().norm().transpose().cwiseMax(1e-300);
-  const Eigen::MatrixXd As = A * cs.cwiseInverse().asDiagonal();
-  const Eigen::LDLT<Eigen::MatrixXd> ldlt(As.transpose() * As);
-  const Eigen::VectorXd th = -ldlt.solve(As.transpose() * base.r);
-  const Eigen::VectorXd res = base.r + As * th;
+  const ScaledLsq ls(A, base.r);
   const double r2 = base.r.squaredNorm();
-  s.dJ = r2 > 0 ? 1.0 - res.squaredNorm() / r2 : 0.0;
-  s.value = th[P] / cs[P];
-  const double s2 = res.squaredNorm() / std::max(1.0, double(m - P - q));
+  s.dJ = r2 > 0 ? 1.0 - ls.res.squaredNorm() / r2 : 0.0;
+  s.value = ls.th[P] / ls.cs[P];
+  const double s2 = ls.res.squaredNorm() / std::max(1.0, double(m - P - q));
   const Eigen::VectorXd e = Eigen::VectorXd::Unit(P + q, P);
-  const double var = s2 * e.dot(ldlt.solve(e)) / (cs[P] * cs[P]);
+  const double var = s2 * e.dot(ls.ldlt.solve(e)) / (ls.cs[P] * ls.cs[P]);
   s.z = var > 0 ? std::fabs(s.value) / std::sqrt(var) : 0.0;
-  if (model_step) *model_step = th.head(P).cwiseQuotient(cs.head(P));
+  if (model_step) *model_step = ls.th.head(P).cwiseQuotient(ls.cs.head(P));
 }
 
 // The misfit reduction of the model's own linearized step (no candidate):
@@ -70,10 +80,7 @@ void joint_linear(const Columns &base, const Eigen::MatrixXd &g, CandidateScreen
 double model_reduction(const Columns &base) {
   const double r2 = base.r.squaredNorm();
   if (!(r2 > 0.0) || base.g.cols() == 0) return 0.0;
-  const Eigen::VectorXd cs = base.g.colwise().norm().transpose().cwiseMax(1e-300);
-  const Eigen::MatrixXd As = base.g * cs.cwiseInverse().asDiagonal();
-  const Eigen::VectorXd th = -Eigen::LDLT<Eigen::MatrixXd>(As.transpose() * As).solve(As.transpose() * base.r);
-  return std::max(0.0, 1.0 - (base.r + As * th).squaredNorm() / r2);
+  return std::max(0.0, 1.0 - ScaledLsq(base.g, base.r).res.squaredNorm() / r2);
 }
 
 // Move the core RT parameters by the linearized step that accompanies the
