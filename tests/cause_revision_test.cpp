@@ -400,8 +400,10 @@ TEST(SpectrumToOneBranch, ASpectrumOnASlowBranchIsAMaxwellBranch) {
 // at twice its relaxation time and half its stiffness, and a cubic spring
 // of negligible size sits at the generator's model: the current model is
 // refitted from there without the spring, and the last cause's figures are
-// the refit's. A significant word, or one that fits no better, changes
-// nothing.
+// the refit's. At that minimum a significant word, or one that fits no
+// better, changes nothing, and neither do the restarts along its least
+// determined direction; away from a minimum those restarts' refit repairs
+// the model without any word.
 TEST(RepairBasin, AnInsignificantWordsBetterFitMovesTheCurrentModel) {
   const Scenario sc = hidden_effect_scenario("maxwell", 5, 0.005, 4.0);
   const DiagSetup su(sc);
@@ -421,15 +423,19 @@ TEST(RepairBasin, AnInsignificantWordsBetterFitMovesTheCurrentModel) {
   cubic.fit.model.p.k3 = 1e-9;
   cubic.fit.error = extended_error(cubic.fit.model, sc.fit, su.opt.misfit);
   ASSERT_LT(cubic.fit.error, 0.9 * before.error_fit);
-  auto run = [&](const CandidateOutcome &co, diag::Current &cur, DiagnoseResult &R) {
-    cur = before;
+  auto run_from = [&](const diag::Current &start, const CandidateOutcome &co, diag::Current &cur,
+                      DiagnoseResult &R) {
+    cur = start;
     Cause c;
     c.cand = causes[0];
-    c.error_holdout = before.error_holdout;
-    c.error_holdout_before = 2.0 * before.error_holdout;
+    c.error_holdout = start.error_holdout;
+    c.error_holdout_before = 2.0 * start.error_holdout;
     c.gain = 0.5;
     R.causes = {c};
     return diag::repair_basin(cur, {co}, su.cx, R);
+  };
+  auto run = [&](const CandidateOutcome &co, diag::Current &cur, DiagnoseResult &R) {
+    return run_from(before, co, cur, R);
   };
   diag::Current cur;
   DiagnoseResult R;
@@ -442,12 +448,20 @@ TEST(RepairBasin, AnInsignificantWordsBetterFitMovesTheCurrentModel) {
   EXPECT_DOUBLE_EQ(R.causes[0].gain, 1.0 - cur.error_holdout / (2.0 * before.error_holdout));
   EXPECT_EQ(R.extended_fit.model.p.maxwell_tau, cur.model.p.maxwell_tau);
 
+  // At the repaired model (a minimum in the generator's basin).
+  const diag::Current at_min = cur;
   CandidateOutcome significant = cubic;
   significant.amplitude_z = 10.0;
-  EXPECT_FALSE(run(significant, cur, R));
-  EXPECT_EQ(cur.model.p.maxwell_tau, before.model.p.maxwell_tau);
+  significant.fit.error = 0.5 * at_min.error_fit;
+  EXPECT_FALSE(run_from(at_min, significant, cur, R));
+  EXPECT_EQ(cur.model.p.maxwell_tau, at_min.model.p.maxwell_tau);
   EXPECT_EQ(R.causes[0].gain, 0.5);
   CandidateOutcome no_better = cubic;
+  no_better.fit.error = 0.95 * at_min.error_fit;
+  EXPECT_FALSE(run_from(at_min, no_better, cur, R));
+  // Away from a minimum, with no word showing a basin: the restarts' refit.
   no_better.fit.error = 0.95 * before.error_fit;
-  EXPECT_FALSE(run(no_better, cur, R));
+  ASSERT_TRUE(run(no_better, cur, R));
+  EXPECT_LT(cur.error_fit, 0.99 * before.error_fit);
+  EXPECT_NEAR(cur.model.p.maxwell_tau, sc.truth.p.maxwell_tau, 0.1 * sc.truth.p.maxwell_tau);
 }

@@ -98,6 +98,57 @@ TEST(TrustRegionStop, CrawlTowardsALimitStopsOnTheNoiseScale) {
   EXPECT_LT(b.f - f_inf, b.f / m);
 }
 
+// Two basins along the least determined coordinate x (a stiff y beside it):
+// r = (10 y, x^2 - 0.04, 0.05 (x - 0.3)). The basin near x = -0.2 holds
+// f ~ 3e-4, the one near x = +0.2 f ~ 1e-5; between them a barrier at x = 0.
+Objective two_basins_on_a_ridge() {
+  Objective o;
+  o.residuals = [](const Eigen::VectorXd &th, Eigen::VectorXd &r, Eigen::MatrixXd *J) {
+    const double x = th[0], y = th[1];
+    r = (Eigen::VectorXd(3) << 10.0 * y, x * x - 0.04, 0.05 * (x - 0.3)).finished();
+    if (J) *J = (Eigen::MatrixXd(3, 2) << 0.0, 10.0, 2.0 * x, 0.0, 0.05, 0.0).finished();
+  };
+  return o;
+}
+
+TEST(SloppyRestarts, ARestartAlongTheRidgeFindsTheLowerBasin) {
+  const Objective o = two_basins_on_a_ridge();
+  const RunFrom run = [&](const Eigen::VectorXd &t, const OptOptions &op) {
+    return minimize_trust_region(o, t, op);
+  };
+  const OptOptions oo;
+  OptResult r = run((Eigen::VectorXd(2) << -0.25, 1.0).finished(), oo);
+  ASSERT_TRUE(r.converged) << r.message;
+  ASSERT_NEAR(r.theta[0], -0.2, 0.02);  // the higher basin
+  const double f_first = r.f;
+  const int its = r.iterations;
+  EXPECT_EQ(restart_sloppy(o, run, oo, 2, r), 1);
+  EXPECT_NEAR(r.theta[0], 0.2, 0.02);
+  EXPECT_NEAR(r.theta[1], 0.0, 1e-8);
+  EXPECT_LT(r.f, 0.1 * f_first);
+  EXPECT_GT(r.iterations, its);  // the restarts' iterations are counted
+  // From the lower basin no restart improves, and r stays.
+  const Eigen::VectorXd at = r.theta;
+  EXPECT_EQ(restart_sloppy(o, run, oo, 2, r), 0);
+  EXPECT_EQ(r.theta, at);
+}
+
+TEST(SloppyRestarts, AnUnconvergedRunIsNotRestarted) {
+  // A run stopped by its iteration limit is still descending: restarts
+  // around it would only continue the crawl.
+  const Objective o = two_basins_on_a_ridge();
+  const RunFrom run = [&](const Eigen::VectorXd &t, const OptOptions &op) {
+    return minimize_trust_region(o, t, op);
+  };
+  OptOptions one;
+  one.max_iter = 1;
+  OptResult r = run((Eigen::VectorXd(2) << -0.25, 1.0).finished(), one);
+  ASSERT_FALSE(r.converged);
+  const Eigen::VectorXd at = r.theta;
+  EXPECT_EQ(restart_sloppy(o, run, one, 2, r), 0);
+  EXPECT_EQ(r.theta, at);
+}
+
 TEST(RampTransform, ZeroAdmissibleParametersAreLinearInABox) {
   rtb_params p;
   rtb_params_default(&p, RTB_MODEL_RT);

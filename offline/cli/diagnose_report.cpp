@@ -43,6 +43,7 @@ void print_diagnosis(const DiagnoseResult &R) {
     std::printf("%-2d %-22s %10.3f %10.3f %10.4g %8.3g %5.0f%%  %s\n", c.round, name.c_str(),
                 100 * c.fit.error, 100 * c.error_holdout, c.dbic, c.amplitude_z, 100 * c.gain,
                 c.eligible ? "eligible" : c.why.c_str());
+    if (!c.origin.empty()) std::printf("%-2s %-22s (%s)\n", "", "", c.origin.c_str());
   }
   if (!R.residuals.empty()) {
     const RecordResiduals &r = R.residuals.front();
@@ -195,6 +196,7 @@ nlohmann::ordered_json diagnosis_json(const DiagnoseResult &R, const std::vector
                       {"amplitude_z", num(c.amplitude_z)}};
     e["eligible"] = c.eligible;
     if (!c.eligible) e["why_not"] = c.why;
+    if (!c.origin.empty()) e["origin"] = c.origin;
     e["iterations"] = c.fit.iterations;
     e["seconds"] = {{"screen", c.screen.seconds}, {"joint_fit", c.fit_seconds}};
     cs.push_back(e);

@@ -158,8 +158,9 @@ void accept_one(Current &cur, const CandidateOutcome &best, int round, const Con
 }
 
 // Stage 5f, when a later round has no eligible word: a better basin of the
-// current model that the round's fits found (repair_basin) is taken, the
-// round judged against it, or run again while above the floor. Only then:
+// current model, found by the round's fits or by restarts along the model's
+// least determined direction (repair_basin), is taken, the round judged
+// against it, or run again while above the floor. Only then:
 // a round with an eligible word keeps its verdict, since the better basin
 // may be the core imitating that word (blindgen viscous+cubic_stiffness_s10:
 // after the cubic, an insignificant inertia's fit put the core in a basin
@@ -186,11 +187,18 @@ Current accept_causes(Current cur, std::vector<CandidateOutcome> round_out, cons
         R.imposed ? diag::imposed_cause(round_out, opt.imposed[(size_t)round])
                   : select_cause(round_out, opt.parsimony, cx.selection_scales());
     R.candidates.insert(R.candidates.end(), round_out.begin(), round_out.end());
+    CandidateOutcome single;
     if (best) {
       accept_one(cur, *best, round, cx, R);
-    } else {
-      if (round > 0 || R.imposed || !diag::pair_of_causes(cur, round_out, cx, R)) break;
+    } else if (round > 0 || R.imposed) {
+      break;
+    } else if (diag::pair_of_causes(cur, round_out, cx, R, &single)) {
       round = 1;  // the pair's second word was its trial round's
+    } else if (single.eligible) {
+      R.candidates.push_back(single);
+      accept_one(cur, single, 0, cx, R);
+    } else {
+      break;
     }
     if (R.imposed ? (size_t)round + 1 >= n_imposed
                   : (round + 1 >= opt.max_causes || !above_floor(cur, R, opt)))

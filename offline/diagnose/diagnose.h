@@ -204,6 +204,9 @@ struct CandidateOutcome {
   // gain or a plausibility check against the current model: it may pay
   // together with a second cause (stage 5e, cause_pair.cpp).
   bool lead = false;
+  // Where its joint fit started when not at the screen's start: "" or, from
+  // stage 5e, "refitted alone from the <a> + <b> pair".
+  std::string origin;
   ModelErrors errors() const { return {fit.error, error_holdout, error_holdout_trimmed}; }
 };
 

@@ -124,9 +124,11 @@ int drop_redundant(Current &cur, const Context &cx, DiagnoseResult &R);
 // to nothing (z < min_z in the current fit) and that no longer pays; its
 // index, or -1.
 int drop_vanished(Current &cur, const Context &cx, DiagnoseResult &R);
-// Stage 5f: a later round's insignificant candidate that fits below 0.9x
-// the current model found a better basin of the current model: refit from
-// there, adopted when lower (cause_revision.cpp). True when cur changed.
+// Stage 5f: a better basin of the current model, from a later round's
+// insignificant candidate that fits below 0.9x the current model (refitted
+// from there, adopted when lower) or else from two restarts along the
+// current model's least determined direction (adopted when 1% lower;
+// cause_revision.cpp). True when cur changed.
 bool repair_basin(Current &cur, const std::vector<CandidateOutcome> &round, const Context &cx,
                   DiagnoseResult &R);
 // Stage 5d: a refinement whose relaxation is no longer a cause is dropped
@@ -166,8 +168,11 @@ void copy_cause(const Candidate &c, const ExtModel &from, ExtModel &to);
 // Stage 5e: no single word paid in the first round (`first`); try the
 // leads with a second word. True when a pair paid: cur becomes the pair's
 // model, both causes are in R.causes and the trial round in R.candidates.
+// Else single->eligible tells whether a member of a refused pair, refitted
+// alone from it, is a first cause (*single: its outcome, judged against the
+// baseline), for the caller to accept.
 bool pair_of_causes(Current &cur, const std::vector<CandidateOutcome> &first, const Context &cx,
-                    DiagnoseResult &R);
+                    DiagnoseResult &R, CandidateOutcome *single);
 
 // The report entry of an accepted cause (sizes, gain over `before`).
 Cause make_cause(const CandidateOutcome &co, const Current &before);

@@ -207,6 +207,9 @@ ExtFitResult fit_extended(const std::vector<Record> &recs, const ExtModel &start
   oo.lower.head(P) = tf.lower();
   oo.upper.head(P) = tf.upper();
   OptResult o = minimize_trust_region(obj, th0, oo);
+  restart_sloppy(obj, [&](const Eigen::VectorXd &t, const OptOptions &op) {
+    return minimize_trust_region(obj, t, op);
+  }, oo, spec.restarts, o);
   int iterations = o.iterations;
   long masked = 0;
   if (spec.robust_k > 0.0) {

@@ -43,6 +43,9 @@ struct ExtFitSpec {
   // machine transient); a systematic misfit is never masked. 0 disables.
   double robust_k = 6.0;
   double robust_max_fraction = 0.01;
+  // Restarts of the first fit along its least determined direction
+  // (restart_sloppy, optimizer.h); 0 (the joint fits): none.
+  int restarts = 0;
 };
 
 struct ExtFitResult {

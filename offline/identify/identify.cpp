@@ -90,42 +90,16 @@ IdentifyResult identify(const std::vector<Record> &recs, const rtb_params &start
     };
   // value_grad returns J/J0 while residuals give 1/2 |r|^2 = J/J0 as well.
   const Eigen::VectorXd th0 = tf.to_theta(start);
-  auto run = [&](const Eigen::VectorXd &t) {
-    return opt.method == Method::Bfgs ? minimize_bfgs(obj, t, oo) : minimize_trust_region(obj, t, oo);
+  const RunFrom run = [&](const Eigen::VectorXd &t, const OptOptions &o) {
+    return opt.method == Method::Bfgs ? minimize_bfgs(obj, t, o) : minimize_trust_region(obj, t, o);
   };
-  OptResult r = run(th0);
-  // J >= 0: a fit at rounding level (f = J/J0) is the global minimum already.
-  // A run that stopped at its iteration limit is still descending (a valley
-  // towards a limit model, e.g. rigid cells absorbing an inertia force):
-  // restarts around it would only continue the crawl.
-  if (opt.restarts > 0 && r.converged && r.theta.size() > 1 && r.f > 1e-20) {
-    Eigen::VectorXd res;
-    Eigen::MatrixXd Jt;
-    obj.residuals(r.theta, res, &Jt);
-    if (std::isfinite(res.squaredNorm()) && Jt.rows() > 0) {
-      Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(Jt.transpose() * Jt);
-      const Eigen::VectorXd dir = es.eigenvectors().col(0);  // smallest eigenvalue
-      // A restart only has to reveal a lower basin: converge it loosely and
-      // polish the winner at full tolerance.
-      const OptOptions full = oo;
-      oo.ftol = 1e-6;
-      for (int k = 0; k < opt.restarts; ++k) {
-        const double s = (k % 2 == 0 ? 0.4 : -0.4) * (1 + k / 2);
-        OptResult q = run((r.theta + s * dir).cwiseMax(oo.lower).cwiseMin(oo.upper));
-        if (q.f < r.f * (1.0 - 1e-9)) {
-          oo = full;
-          OptResult polished = run(q.theta);
-          oo.ftol = 1e-6;
-          polished.iterations += r.iterations + q.iterations;
-          r = polished;
-          ++out.restart_improved;
-        } else {
-          r.iterations += q.iterations;
-        }
-      }
-      oo = full;
-    }
-  }
+  OptResult r = run(th0, oo);
+  // J >= 0: a fit at rounding level (f = J/J0) is the global minimum already
+  // (restart_sloppy skips it). A run that stopped at its iteration limit is
+  // still descending (a valley towards a limit model, e.g. rigid cells
+  // absorbing an inertia force): restarts around it would only continue the
+  // crawl, and restart_sloppy skips an unconverged run too.
+  out.restart_improved = restart_sloppy(obj, run, oo, opt.restarts, r);
   out.params = tf.to_params(r.theta, start);
   const MisfitValue m = misfit(out.params, recs, opt.misfit, false);
   ++fwd;

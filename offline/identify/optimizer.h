@@ -50,6 +50,19 @@ OptResult minimize_bfgs(const Objective &obj, const Eigen::VectorXd &theta0, con
 OptResult minimize_trust_region(const Objective &obj, const Eigen::VectorXd &theta0,
                                 const OptOptions &opt);
 
+// One minimization of the caller's objective from theta0 with options opt.
+using RunFrom = std::function<OptResult(const Eigen::VectorXd &theta0, const OptOptions &opt)>;
+
+// Restarts of a converged result r from r.theta +-0.4, +-0.8, ... along the
+// least determined direction of the Gauss-Newton Hessian J^T J at r (its
+// smallest eigenvalue's eigenvector), each converged loosely (ftol 1e-6); a
+// lower one is polished with `oo` and replaces r. With noise the misfit has
+// secondary minima along such ridges (the RT model's Kr-C0 ridge; a Maxwell
+// branch's time). Returns the number of restarts that improved r; r's
+// iterations and evaluations count all of them.
+int restart_sloppy(const Objective &obj, const RunFrom &run, OptOptions oo, int restarts,
+                   OptResult &r);
+
 }  // namespace rtb
 
 #endif

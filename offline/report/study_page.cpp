@@ -82,7 +82,8 @@ std::string candidates_table(const DiagnoseResult &D) {
     o << "| " << display_name(c.cand) << " | " << (j ? pc(c.fit.error) : "-") << " | "
       << (j ? pc(c.error_holdout) : "-") << " | " << (j ? fmt("%.4g", c.dbic) : "-") << " | "
       << (j ? fmt("%.3g", c.amplitude_z) : "-") << " | " << (j ? fmt("%.0f%%", 100 * c.gain) : "-")
-      << " | " << (c.eligible ? "eligible" : c.why) << " |\n";
+      << " | " << (c.eligible ? "eligible" : c.why)
+      << (c.origin.empty() ? std::string() : " (" + c.origin + ")") << " |\n";
   }
   return o.str();
 }
