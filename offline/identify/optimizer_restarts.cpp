@@ -1,6 +1,8 @@
 // optimizer_restarts.cpp -- restarts of a converged minimization along its
 // least determined direction (optimizer.h). Shared by identify() and the
 // diagnosis's basin check of an accepted cause (fit_extended).
+#include <cmath>
+
 #include <Eigen/Eigenvalues>
 
 #include "identify/optimizer.h"
