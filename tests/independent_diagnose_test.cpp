@@ -234,7 +234,7 @@ TEST(IndependentDiagnose, CreepingForceZeroIsUnexplained) {
 // from the start (K0 = 0, alpha 0.69, a chain 12 times too stiff), and the
 // branch went to 3.76 s from either start, 1.44% fit and a 1% held-out
 // gain: only the offset was named (session 39). The restart from the middle
-// of the resolved times (mid_branch_start) finds the generator's 0.078 s.
+// of the resolved times (slow_branch_restart) finds the generator's 0.078 s.
 class BranchBesideOffset : public ::testing::TestWithParam<unsigned> {};
 
 TEST_P(BranchBesideOffset, IsFoundAtTheGeneratorsTime) {

@@ -118,7 +118,9 @@ void middle_branch_start(CandidateOutcome &co, const std::vector<Candidate> &wit
 // held-out gain; restarted at the middle time with the fitted stiffness,
 // the generator's 0.078 s and K0, 1.03% fit). The start for that restart:
 // the fitted model with the middle time; false when the branch is faster.
-bool mid_branch_start(const CandidateOutcome &co, const Context &cx, ExtModel *start) {
+// Unlike middle_branch_start (a branch past the records, before judging,
+// from the screen's start), it runs only when the judged branch fails.
+bool slow_branch_restart(const CandidateOutcome &co, const Context &cx, ExtModel *start) {
   const double tau_mid = middle_resolved_time(cx.sc);
   if (co.cand.name != "maxwell" || !(co.fit.model.p.maxwell_tau > tau_mid)) return false;
   *start = co.fit.model;
@@ -276,7 +278,7 @@ bool earlier_round_start(const CandidateOutcome &co, const Current &cur,
 //   the generator's 0.179 s, 1.57% held out at a floor of 1.54%);
 // - a significant Maxwell branch that fails the held-out gain with its time
 //   in the slow half of what the records resolve also restarts from the
-//   middle of that range (mid_branch_start);
+//   middle of that range (slow_branch_restart);
 // - a later word whose fit pays but whose own size is insignificant (the core
 //   does its job) restarts from the STS start of the core (blindgen
 //   viscous+cubic_stiffness_s10: after the cubic, Kpa = 9e4 and alpha =
@@ -298,7 +300,7 @@ void refit_from_other_basin(CandidateOutcome &co, const Current &cur, const Cont
   } else if (co.round > 0 && co.amplitude_z < opt.min_z && co.gain >= min_gain) {
     starts.push_back({sts_core_start(co.fit.model, cx), "the STS start"});
   }
-  if (fails_gain && mid_branch_start(co, cx, &start))
+  if (fails_gain && slow_branch_restart(co, cx, &start))
     starts.push_back({start, "the middle of the resolved times"});
   if (starts.empty()) return;
   std::vector<Candidate> with = cur.causes;
