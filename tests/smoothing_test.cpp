@@ -189,6 +189,23 @@ TEST(Smoothing, ExtremeValuesNeverNaN) {
   EXPECT_LE(not_converged_moderate, 2);
 }
 
+// d phi / d alpha at a pair the Newton tolerance left off the curve, with
+// the force rounded to 0 or |f| / C0 underflowing while v is not 0: the
+// dashpots of a fit whose C0 went to 4e-14 (forces at 1e-15, one exactly 0
+// beside v = -1.4e-3). ln(0) made it infinite, and every later sensitivity
+// of the record NaN (blindgen backlash_held_s31). It is 0 there, as at
+// f = 0 on the curve, and unchanged elsewhere.
+TEST(DashpotLaw, AlphaSensitivityIsFiniteWhereTheForceRoundsToZero) {
+  const double alpha = 0.999999999;
+  for (double s : {0.0, 1e3}) {
+    EXPECT_EQ(rtb_dashpot_dv_dalpha(0.0, -1.4e-3, 4e-14, alpha, s), 0.0) << s;
+    EXPECT_EQ(rtb_dashpot_dv_dalpha(-0.0, 1.4e-3, 4e-14, alpha, s), 0.0) << s;
+  }
+  EXPECT_EQ(rtb_law_dv_dalpha(1e-320, 2e-3, 1e10, 0.5), 0.0);  // |f| / C0 underflows
+  const double f = 3.0, C0 = 40.0, a = 0.3, v = rtb_law_velocity(f, C0, a);
+  EXPECT_DOUBLE_EQ(rtb_law_dv_dalpha(f, v, C0, a), -v * std::log(f / C0) / (a * a));
+}
+
 class SmoothingSteps : public ::testing::TestWithParam<int> {};
 
 TEST_P(SmoothingSteps, ConvergeAndTendToUnsmoothed) {

@@ -74,7 +74,8 @@ OptResult minimize_trust_region(const Objective &obj, const Eigen::VectorXd &the
       }
     }
     bool accepted = false;
-    Eigen::VectorXd step;
+    Eigen::VectorXd step, r_acc;
+    Eigen::MatrixXd J_acc;
     double f_new = f;
     for (int tries = 0; tries < 40; ++tries) {
       Eigen::MatrixXd M = Ar;
@@ -90,10 +91,19 @@ OptResult minimize_trust_region(const Objective &obj, const Eigen::VectorXd &the
       const double predicted = -(g.dot(step) + 0.5 * step.dot(A * step));
       const double rho = predicted > 0.0 ? (f - f_new) / predicted : -1.0;
       if (rho > 1e-4) {
-        accepted = true;
-        lambda *= rho > 0.75 ? 0.2 : (rho > 0.25 ? 1.0 : 2.0);
-        lambda = std::fmax(lambda, 1e-12);
-        break;
+        // A point whose Jacobian is not finite is refused like a step that
+        // failed: the tangent sweeps overflow near a limit model, and from
+        // there no step can be computed (blindgen backlash_held_s31: the
+        // baseline went to C0 = 1e-12 with alpha -> 1, a NaN gradient
+        // stopped it at 26% where the fit ends at 17.6% otherwise).
+        obj.residuals(x + step, r_acc, &J_acc);
+        ++res.evaluations;
+        if (r_acc.allFinite() && J_acc.allFinite()) {
+          accepted = true;
+          lambda *= rho > 0.75 ? 0.2 : (rho > 0.25 ? 1.0 : 2.0);
+          lambda = std::fmax(lambda, 1e-12);
+          break;
+        }
       }
       lambda *= 4.0;
       if (lambda > 1e12) break;
@@ -104,8 +114,8 @@ OptResult minimize_trust_region(const Objective &obj, const Eigen::VectorXd &the
       break;
     }
     x += step;
-    obj.residuals(x, r, &J);
-    ++res.evaluations;
+    r.swap(r_acc);
+    J.swap(J_acc);
     const double gained = f - 0.5 * r.squaredNorm();
     f = 0.5 * r.squaredNorm();
     // Stalled: three accepted steps in a row each gained less than chi2_tol

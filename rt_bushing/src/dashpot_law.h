@@ -52,8 +52,12 @@ static inline rtb_real rtb_law_dv_dC0(rtb_real v, rtb_real C0, rtb_real alpha) {
 
 /* d phi / d alpha at fixed f = -v ln(|f|/C0) / alpha^2 (0 at f = 0). */
 static inline rtb_real rtb_law_dv_dalpha(rtb_real f, rtb_real v, rtb_real C0, rtb_real alpha) {
-  /* v == 0 also covers f so small that |f|/C0 underflows (log would be -inf). */
-  return v == 0.0 ? 0.0 : -v * log(fabs(f) / C0) / (alpha * alpha);
+  /* 0 where |f|/C0 is 0 (log would be -inf): at f = 0, where it underflows,
+   * and at a pair the Newton tolerance left with f = 0 but v != 0 (C0 ->
+   * 0: dashpot forces at rounding level, v following the input; blindgen
+   * backlash_held_s31 gave every later sensitivity NaN from there). */
+  const rtb_real q = fabs(f) / C0;
+  return (v == 0.0 || !(q > 0.0)) ? 0.0 : -v * log(q) / (alpha * alpha);
 }
 
 /* Dissipation potential of phi: Phi*(f) = int_0^f phi = alpha/(1+alpha) f v. */

@@ -31,6 +31,15 @@
 #                              as the fit ones: the baseline 4.6x the fit
 #                              floor, 2.4x the held-out one (`unexplained`
 #                              before the pair stage looked at both floors).
+#   backlash_held:31           a held clearance of 18% of the stroke: the
+#                              plain RT fit loses its dashpots (C0 -> 4e-14),
+#                              and a sensitivity of ln 0 made every later
+#                              tangent NaN (`unexplained`, every word
+#                              screened out, before session 41).
+#   viscous,cubic_stiffness:31 a dashpot the core absorbed after the cubic,
+#                              paying nothing there (a Maxwell branch at
+#                              1.36 s named instead before session 41's
+#                              STS restart of every insignificant later word).
 # Exit 77 (ctest: skipped) without numpy and scipy (python3-numpy,
 # python3-scipy; `make deps` installs them).
 set -u
