@@ -94,8 +94,8 @@ OptResult minimize_trust_region(const Objective &obj, const Eigen::VectorXd &the
         // A point whose Jacobian is not finite is refused like a step that
         // failed: the tangent sweeps overflow near a limit model, and from
         // there no step can be computed (blindgen backlash_held_s31: the
-        // baseline went to C0 = 1e-12 with alpha -> 1, a NaN gradient
-        // stopped it at 26% where the fit ends at 17.6% otherwise).
+        // baseline went to C0 = 4e-14 with alpha -> 1, a NaN gradient
+        // stopped it at 26% where the fit ends at 17.5% otherwise).
         obj.residuals(x + step, r_acc, &J_acc);
         ++res.evaluations;
         if (r_acc.allFinite() && J_acc.allFinite()) {
