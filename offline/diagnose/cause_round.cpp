@@ -14,6 +14,18 @@
 #include "rt_bushing/src/bushing_force.h"
 
 namespace rtb {
+
+// Parameters a candidate adds (its extension's, or the artefact's).
+static size_t parameter_count(const Candidate &c) {
+  return c.extra.size() + (c.delay ? 1 : 0) + (c.offset ? 1 : 0);
+}
+
+// What a candidate adds net of the current causes' parameters it displaces.
+static size_t net_parameter_count(const CandidateOutcome &co) {
+  const size_t n = parameter_count(co.cand);
+  return n > co.displaces ? n - co.displaces : 0;
+}
+
 namespace diag {
 
 Current make_current(const ExtModel &m, const ExtFitSpec &spec, const std::vector<Candidate> &causes,
@@ -36,13 +48,19 @@ double fastest_branch_share(const rtb_params &p) {
   return sp.M > 0 ? sp.w[0] : 0.0;
 }
 
+// The name of cause c's size in a fit's parameter list: its first
+// parameter, or the delay / offset; "" for a switch (slack).
+static std::string size_name(const Candidate &c) {
+  if (!c.extra.empty()) return param_name(c.extra[0]);
+  if (c.delay) return "delay";
+  if (c.offset) return "offset";
+  return "";
+}
+
 // diagnose_stages.h.
 double amplitude_z(const Candidate &c, const ExtFitResult &f) {
-  std::string amp;
-  if (!c.extra.empty()) amp = param_name(c.extra[0]);
-  else if (c.delay) amp = "delay";
-  else if (c.offset) amp = "offset";
-  else return INFINITY;  // a switch (slack): judged by BIC and gain alone
+  const std::string amp = size_name(c);
+  if (amp.empty()) return INFINITY;  // a switch (slack): judged by BIC and gain alone
   for (size_t i = 0; i < f.names.size(); ++i)
     if (f.names[i] == amp) {
       const double sd = f.stddev_valid ? f.stddev[(Eigen::Index)i] : NAN;
@@ -50,6 +68,25 @@ double amplitude_z(const Candidate &c, const ExtFitResult &f) {
       return sd > 0.0 ? std::fabs(f.value[(Eigen::Index)i]) / sd : INFINITY;
     }
   return 0.0;
+}
+
+// diagnose_stages.h. A later word that takes an earlier cause to nothing
+// replaces it rather than adding to it: blindgen maxwell_s33 (tau 5.7 ms at
+// 2 kHz) was named `viscous` first, and in round 2 the branch's fit set the
+// dashpot to 0 +- 0.1 (2.65% fit, 3.08% held out) while a force low-pass
+// kept it (2.64%, 3.12%); counted as two parameters against one, parsimony
+// took the low-pass, and the verdict was viscous + delay.
+size_t displaced_parameters(const std::vector<Candidate> &causes, const ExtFitResult &f,
+                            double min_z) {
+  size_t n = 0;
+  for (const Candidate &c : causes) {
+    const std::string amp = size_name(c);
+    if (c.configure || amp.empty() ||
+        std::find(f.names.begin(), f.names.end(), amp) == f.names.end())
+      continue;  // not sized, or not free in f
+    if (amplitude_z(c, f) < min_z) n += parameter_count(c);  // NaN (no Wald figure): not counted
+  }
+  return n;
 }
 
 namespace {
@@ -214,6 +251,7 @@ void judge(CandidateOutcome &co, const Current &cur, const Context &cx, double m
   co.error_holdout_trimmed = extended_error(co.fit.model, cx.sel, cx.sel_opt, nullptr, nullptr, opt.trim);
   co.gain = 1.0 - co.error_holdout_trimmed / cur.error_holdout_trimmed;
   co.amplitude_z = amplitude_z(co.cand, co.fit);
+  co.displaces = displaced_parameters(cur.causes, co.fit, opt.min_z);
   // At a clamp the Wald z does not exist; the likelihood ratio of the fit
   // against the current model (one added parameter) still measures it.
   if (std::isnan(co.amplitude_z))
@@ -329,6 +367,50 @@ void refit_from_other_basin(CandidateOutcome &co, const Current &cur, const Cont
   co.why.clear();
   co.lead = false;
   judge(co, cur, cx, min_gain);
+}
+
+// When the first round names nothing and the baseline is far above a floor
+// (the pair stage's test), the screen's cut has decided the verdict: the
+// next joint_fits_next significant words by screen are fitted and judged too,
+// so that a word just under the cut can be named or lead a pair. Blindgen
+// mullins+delay_s21 (a random held-out record with a 5.84% floor, 2.91% for
+// the fit ones; baseline 14.25% held out): the erf Mullins loss screened at
+// z = 130 but 0.0511 of misfit reduction, 0.0408 over the model's own step
+// against the cut's 0.0438, so no word was a lead and the verdict was
+// `unexplained`; fitted, it gains 7% held out and leads the pair mullins +
+// delay at the held-out floor (session 37, where it was fitted in round 0).
+void fit_past_the_cut(std::vector<CandidateOutcome> &out, const Current &cur, const Context &cx,
+                      DiagnoseResult &R, double min_gain) {
+  const DiagnoseOptions &opt = cx.opt;
+  for (const CandidateOutcome &co : out)
+    if (co.eligible) return;
+  const bool far = cur.error_holdout > opt.pair_above_floor * cx.floor_sel ||
+                   cur.error_fit > opt.pair_above_floor * cx.floor_fit;
+  if (cx.clipped || !far) return;
+  std::vector<size_t> rest;
+  std::vector<CandidateOutcome> more;
+  for (size_t i = 0; i < out.size(); ++i)
+    if (!out[i].joint && out[i].screen.z >= opt.min_z && out[i].why.rfind("screened out", 0) == 0) {
+      rest.push_back(i);
+      more.push_back(out[i]);
+      more.back().why.clear();
+    }
+  if (more.empty()) return;
+  joint_fits(more, cur, cx, opt.joint_fits_next, "");
+  for (size_t k = 0; k < more.size(); ++k) {
+    CandidateOutcome &co = more[k];
+    if (!co.joint) {
+      if (!co.why.empty()) out[rest[k]] = co;  // its fit failed: say so
+      continue;
+    }
+    judge(co, cur, cx, min_gain);
+    refit_from_other_basin(co, cur, cx, R.candidates, min_gain);
+    if (!opt.quiet)
+      std::fprintf(stderr, "diagnose: %s, past the screen's cut, fitted: held-out %.3f%%, %s\n",
+                   display_name(co.cand).c_str(), 100 * co.error_holdout,
+                   co.eligible ? "eligible" : co.why.c_str());
+    out[rest[k]] = co;
+  }
 }
 
 // A lead of the force (the displacement channel lags by tau) is, to first
@@ -451,6 +533,11 @@ std::vector<CandidateOutcome> one_round(const Current &cur, const Context &cx, i
     refit_from_other_basin(co, cur, cx, R.candidates, min_gain);
     R.seconds_joint += since(t_again);
   }
+  if (round == 0 && imposed.empty()) {
+    const auto t_more = Clock::now();
+    fit_past_the_cut(out, cur, cx, R, min_gain);
+    R.seconds_joint += since(t_more);
+  }
   demote_lead_twins(out, cur);
   for (CandidateOutcome &co : excluded) {
     judge(co, cur, cx, 0.0);
@@ -560,11 +647,6 @@ bool is_candidate_name(const std::string &name) {
   return false;
 }
 
-// Fitted parameters a candidate adds (its extension's, or the artefact's).
-static size_t parameter_count(const Candidate &c) {
-  return c.extra.size() + (c.delay ? 1 : 0) + (c.offset ? 1 : 0);
-}
-
 // `big` nests `small` and takes most of its excess over the floor
 // (diagnose.h, select_cause): a softening spring and a degressive cubic,
 // held out; a relaxation spectrum and a dashpot (its fastest branches are
@@ -593,8 +675,16 @@ static bool refines(const CandidateOutcome &big, const CandidateOutcome &small,
 
 // Stage 5's choice among the eligible: the lowest trimmed held-out error,
 // or, within `parsimony` of it, the candidate with the fewest parameters
-// (then the lower error), unless a nesting word refines it. nullptr when
-// none is eligible.
+// net of the causes it displaces (then the one that leaves fewer causes,
+// then the lower error), unless a nesting word refines it. nullptr when
+// none is eligible. Why fewer causes before the error: a dashpot and a
+// first-order force low-pass, (K + c s) / (1 + tau s), are a Maxwell
+// branch, K + k tau s / (1 + tau s) with k tau = c - K tau, in the linear
+// range; the records tell them apart only through the RT core's
+// nonlinearity (blindgen maxwell+offset_s33, after the offset and a
+// dashpot: the branch, displacing the dashpot, 2.565% fit and 3.064% held
+// out; the low-pass 2.556% and 2.993%). One mechanism is preferred to two
+// for the same parameters.
 const CandidateOutcome *select_cause(const std::vector<CandidateOutcome> &round,
                                      double parsimony, const SelectionScales &scales) {
   auto refined = [&](const CandidateOutcome &co) {
@@ -610,8 +700,12 @@ const CandidateOutcome *select_cause(const std::vector<CandidateOutcome> &round,
   const CandidateOutcome *pick = best;
   for (const CandidateOutcome &co : round) {
     if (!co.eligible || co.error_holdout_trimmed > within || refined(co)) continue;
-    const size_t n = parameter_count(co.cand), m = parameter_count(pick->cand);
-    if (n < m || (n == m && co.error_holdout_trimmed < pick->error_holdout_trimmed)) pick = &co;
+    const size_t n = net_parameter_count(co), m = net_parameter_count(*pick);
+    const bool replaces = co.displaces > 0, pick_replaces = pick->displaces > 0;
+    if (n < m || (n == m && replaces && !pick_replaces) ||
+        (n == m && replaces == pick_replaces &&
+         co.error_holdout_trimmed < pick->error_holdout_trimmed))
+      pick = &co;
   }
   return pick;
 }

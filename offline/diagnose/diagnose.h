@@ -15,7 +15,9 @@
 //                 effect may show mainly in the held-out kind: inertia at high
 //                 frequency), from the exact sensitivities (screen.h).
 // 4. joint fits   the most promising candidates fitted jointly with the
-//                 current model's parameters on the fit records.
+//                 current model's parameters on the fit records; when the
+//                 first round names none and the baseline is far above a
+//                 floor, the next few by screen too (fit_past_the_cut).
 // 5. selection    a candidate is eligible when its amplitude is significant
 //                 (z >= min_z), the fit improves by more than its parameter
 //                 count explains (delta BIC >= min_dbic), the held-out error
@@ -27,7 +29,9 @@
 //                 lowest held-out error among the eligible wins, unless a
 //                 candidate with fewer parameters comes within `parsimony`
 //                 of it (a two-parameter relaxation spectrum imitates a
-//                 viscous dashpot: the simpler word is then the cause).
+//                 viscous dashpot: the simpler word is then the cause); a
+//                 word that takes an earlier cause to nothing counts its
+//                 parameters net of that cause's.
 //                 The accepted cause's model is refitted once from the STS
 //                 start of the records its artefacts removed (the joint fit
 //                 began in the basin that compensated for the missing cause);
@@ -198,6 +202,10 @@ struct CandidateOutcome {
   double dbic = 0.0;          // BIC(current) - BIC(candidate), trimmed fit misfits
   double gain = 0.0;          // 1 - trimmed holdout error / current model's (selection)
   double amplitude_z = 0.0;   // |amplitude parameter| / its standard deviation
+  // Parameters of current causes whose sizes vanish (z < min_z) in this
+  // candidate's joint fit: the word replaces them, and select_cause counts
+  // its parameters net of theirs.
+  size_t displaces = 0;
   bool eligible = false;
   std::string why;            // reason when not eligible
   // Significant, worth its parameters, and refused only for its held-out
@@ -212,7 +220,8 @@ struct CandidateOutcome {
 
 // Stage 5's choice among a round's outcomes: the eligible candidate with the
 // lowest trimmed held-out error or, within `parsimony` (a fraction) of it,
-// the one with the fewest fitted parameters (ties: the lower error);
+// the one with the fewest fitted parameters, net of the current causes its
+// fit displaces (CandidateOutcome::displaces; ties: the lower error);
 // nullptr when none is eligible. A degressive cubic spring is the small-x
 // form of the softening spring (F tanh(x/d) = F x/d - F x^3/(3 d^3) + ...):
 // when the softening spring takes at least half of the cubic's excess over

@@ -139,6 +139,11 @@ int drop_orphaned(Current &cur, const Context &cx, DiagnoseResult &R);
 // finite standard deviation for it (a size at a clamp, a singular
 // covariance); infinite for a switch (slack).
 double amplitude_z(const Candidate &c, const ExtFitResult &f);
+// The parameters of `causes` whose sizes fit f takes to nothing (z <
+// min_z; a NaN z does not count, nor a configured word): a later word whose
+// joint fit does this replaces them (CandidateOutcome::displaces).
+size_t displaced_parameters(const std::vector<Candidate> &causes, const ExtFitResult &f,
+                            double min_z);
 // Stage 5d: a relaxation spectrum refitted onto its fastest branch becomes
 // that branch's word (`viscous` or `maxwell`); the index replaced, or -1.
 int spectrum_to_one_branch(Current &cur, const Context &cx, DiagnoseResult &R);
