@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "offline/diagnose/extended_fit.h"
+#include "offline/identify/sts_init.h"
 
 namespace rtb {
 namespace {
@@ -59,6 +60,72 @@ TEST(ArtefactCorrection, WithoutArtefactsTheRecordIsUnchanged) {
   ExtModel m;
   const std::vector<Record> same = artefact_corrected({rec}, m);
   EXPECT_EQ(same[0].F, rec.F);
+}
+
+// chain_records: the force of an element with elastic extensions, less
+// their static force beyond the tangent at rest, is the force of the same
+// element without them and with that tangent added to K0 (the chain's
+// state depends on x only), so its STS start is that element's. A softening
+// spring with the chain of blindgen softening_s33 (stroke 1, width 0.72):
+// from the raw records the STS inversion reads the spring's curvature as
+// the chain's and starts Kr several times too stiff.
+TEST(ChainRecords, TakeOffTheElasticExtensionsBeyondTheirTangentAtRest) {
+  ExtModel with;
+  rtb_params_default(&with.p, RTB_MODEL_RT);
+  with.p.K0 = -490.0;
+  with.p.Kpa = 1320.0;
+  with.p.Kr = 21100.0;
+  with.p.C0 = 56.9;
+  with.p.alpha = 0.277;
+  with.p.sat_force = 527.0;
+  with.p.sat_disp = 0.72;
+  with.p.k3 = -40.0;
+  with.p.k2 = 30.0;  // k_asym needs K0 >= |k_asym| > 0: below
+  ExtModel without = with;
+  without.p.sat_force = without.p.sat_disp = without.p.k3 = without.p.k2 = 0.0;
+  without.p.K0 = with.p.K0 + with.p.sat_force / with.p.sat_disp;
+  EXPECT_DOUBLE_EQ(elastic_tangent_at_rest(with.p), 527.0 / 0.72);
+  EXPECT_EQ(elastic_tangent_at_rest(without.p), 0.0);
+
+  Record rec = sine_record(1e-3, 2.0);
+  Eigen::VectorXd Fw, Fo;
+  const ExtFitSpec spec;
+  predict_extended(with, rec, SimOptions(), spec, Fw, nullptr);
+  predict_extended(without, rec, SimOptions(), spec, Fo, nullptr);
+  for (size_t j = 0; j < rec.F.size(); ++j) rec.F[j] = Fw[(Eigen::Index)j];
+  const std::vector<Record> chain = chain_records({rec}, with);
+  double worst = 0.0, scale = 0.0;
+  for (Eigen::Index j = 0; j < Fo.size(); ++j) {
+    worst = std::fmax(worst, std::fabs(chain[0].F[(size_t)j] - Fo[j]));
+    scale = std::fmax(scale, std::fabs(Fo[j]));
+  }
+  EXPECT_LT(worst, 1e-9 * scale);
+  EXPECT_EQ(chain[0].x, rec.x);
+
+  // The STS starts: from these records the plain element's; from the raw
+  // ones a chain far from it.
+  Record plain = rec;
+  for (size_t j = 0; j < plain.F.size(); ++j) plain.F[j] = Fo[(Eigen::Index)j];
+  const rtb_params s_chain = sts_initial_guess(chain, 15, 0.2, 0.5);
+  const rtb_params s_plain = sts_initial_guess({plain}, 15, 0.2, 0.5);
+  const rtb_params s_raw = sts_initial_guess({rec}, 15, 0.2, 0.5);
+  EXPECT_NEAR(s_chain.Kr, s_plain.Kr, 1e-6 * s_plain.Kr);
+  EXPECT_NEAR(s_chain.Kpa, s_plain.Kpa, 1e-6 * s_plain.Kpa);
+  EXPECT_NEAR(s_chain.K0, s_plain.K0, 1e-6 * std::fabs(s_plain.Kpa));
+  EXPECT_GT(std::fabs(std::log(s_raw.Kr / s_plain.Kr)), std::log(1.5));
+}
+
+TEST(ChainRecords, WithoutElasticExtensionsAreTheArtefactCorrectedRecords) {
+  Record rec = sine_record(1e-3, 0.5);
+  for (size_t j = 0; j < rec.F.size(); ++j) rec.F[j] = 10.0 * rec.x[j] + 1.0;
+  ExtModel m;
+  m.offset = 1.0;
+  EXPECT_EQ(chain_records({rec}, m)[0].F, artefact_corrected({rec}, m)[0].F);
+  // An asymmetry's |x| term has no tangent at rest: all of it goes.
+  m.p.k_asym = 4.0;
+  for (size_t j = 0; j < rec.F.size(); ++j) rec.F[j] += 4.0 * std::fabs(rec.x[j]);
+  const std::vector<Record> c = chain_records({rec}, m);
+  for (size_t j = 0; j < rec.F.size(); ++j) EXPECT_NEAR(c[0].F[j], 10.0 * rec.x[j], 1e-12);
 }
 
 }  // namespace

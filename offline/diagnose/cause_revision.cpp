@@ -17,9 +17,10 @@ namespace diag {
 
 ExtModel sts_core_start(const ExtModel &m, const Context &cx) {
   ExtModel start = m;
-  const rtb_params sts = sts_initial_guess(artefact_corrected(cx.fit, m), m.p.cells,
+  const rtb_params sts = sts_initial_guess(chain_records(cx.fit, m), m.p.cells,
                                            cx.opt.alpha0, cx.opt.misfit.fit_from);
   for (ParamId id : core_params()) param_ref(start.p, id) = param_get(sts, id);
+  start.p.K0 -= elastic_tangent_at_rest(m.p);
   return start;
 }
 
@@ -148,9 +149,10 @@ bool other_cells_explain(Current &cur, const Current &before, const Candidate &c
   for (int m : counts) {
     if (m == n || m < 1 || m > RTB_MAX_CELLS) continue;
     ExtModel start = before.model;
-    const rtb_params sts = sts_initial_guess(artefact_corrected(cx.fit, before.model), m,
+    const rtb_params sts = sts_initial_guess(chain_records(cx.fit, before.model), m,
                                              opt.alpha0, opt.misfit.fit_from);
     for (ParamId id : core_params()) param_ref(start.p, id) = param_get(sts, id);
+    start.p.K0 -= elastic_tangent_at_rest(before.model.p);
     start.p.cells = m;
     ExtFitResult f;
     try {

@@ -96,8 +96,10 @@ void rejudge(std::vector<CandidateOutcome> &out, const Current &cur, const Conte
 const CandidateOutcome *imposed_cause(const std::vector<CandidateOutcome> &round,
                                       const std::string &name);
 
-// `m` with its five RT parameters from the STS start of the records the
-// element sees (artefacts removed); extension sizes and settings kept.
+// `m` with its five RT parameters from the STS start of the records its
+// chain sees (artefacts and the elastic extensions' static force removed,
+// chain_records; K0 less their tangent at rest); extension sizes and
+// settings kept.
 ExtModel sts_core_start(const ExtModel &m, const Context &cx);
 
 // Stage 5c: refit the accepted cause's model from the STS start; true when

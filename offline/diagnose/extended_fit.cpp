@@ -311,4 +311,22 @@ std::vector<Record> artefact_corrected(const std::vector<Record> &recs, const Ex
   return out;
 }
 
+double elastic_tangent_at_rest(const rtb_params &p) {
+  return p.sat_force > 0.0 && p.sat_disp > 0.0 ? p.sat_force / p.sat_disp : 0.0;
+}
+
+std::vector<Record> chain_records(const std::vector<Record> &recs, const ExtModel &m) {
+  std::vector<Record> out = artefact_corrected(recs, m);
+  const rtb_params &p = m.p;
+  const double k1 = elastic_tangent_at_rest(p);
+  if (p.k2 == 0.0 && p.k3 == 0.0 && p.k_asym == 0.0 && k1 == 0.0) return out;
+  for (Record &r : out)
+    for (size_t j = 0; j < r.x.size(); ++j) {
+      const double x = r.x[j];
+      const double sat = k1 > 0.0 ? p.sat_force * std::tanh(x / p.sat_disp) - k1 * x : 0.0;
+      r.F[j] -= p.k2 * x * x + p.k3 * x * x * x + p.k_asym * std::fabs(x) + sat;
+    }
+  return out;
+}
+
 }  // namespace rtb

@@ -78,6 +78,20 @@ ExtFitResult fit_extended(const std::vector<Record> &recs, const ExtModel &start
 // and the corrected records only start a refit (diagnose stage 5c).
 std::vector<Record> artefact_corrected(const std::vector<Record> &recs, const ExtModel &m);
 
+// The records as the cell chain and K0 see them: artefacts removed as
+// above, and the static force of the elastic extensions beyond its tangent
+// at x = 0 (bushing_force.h: k2 x^2 + k3 x^3 + k_asym |x| + sat_force
+// (tanh(x/d) - x/d), on the recorded x) subtracted. The STS loop inversion
+// of the raw records reads a softening spring's curvature as the chain's
+// sliding; of these, as the chain it is (blindgen softening_s33: Kr 67 800
+// from the raw records, 22 200 from these, the generator's 21 100).
+std::vector<Record> chain_records(const std::vector<Record> &recs, const ExtModel &m);
+
+// The elastic extensions' tangent at x = 0 that chain_records leaves in the
+// force (sat_force / sat_disp): a start from their STS inversion takes it
+// off K0.
+double elastic_tangent_at_rest(const rtb_params &p);
+
 // sqrt(sum J / sum J0) of a model on records (eq. (27)), and its J, J0.
 // trim > 0 drops that fraction of the largest squared residuals of each
 // record from J (a robust variant used to select causes, never reported as
