@@ -163,8 +163,10 @@ typedef struct rtb_params {
    * which equals the input x unless a backlash is set. */
   rtb_real k3;          /* cubic spring: F += k3 xb^3            [force/length^3] */
   rtb_real k_asym;      /* asymmetry: F += k_asym |xb|; stiffness K0+k_asym in
-                           tension, K0-k_asym in compression; |k_asym| <= K0
-                           (0 when K0 < 0) */
+                           tension, K0-k_asym in compression; |k_asym| <=
+                           K0 + 1/(1/Kpa + cells/Kr) + sat_force/sat_disp
+                           (sat term 0 with slack): the static tangent stays
+                           >= 0 on both sides, rtb_static_force */
   rtb_real maxwell_k;   /* extra Maxwell branch stiffness, >= 0  [force/length] */
   rtb_real maxwell_tau; /* its relaxation time, > 0 when maxwell_k > 0 [time] */
   rtb_real viscous_c;   /* parallel linear dashpot: F += c v, >= 0 [force time/length] */

@@ -80,9 +80,10 @@ TEST(ChainRecords, TakeOffTheElasticExtensionsBeyondTheirTangentAtRest) {
   with.p.sat_force = 527.0;
   with.p.sat_disp = 0.72;
   with.p.k3 = -40.0;
-  with.p.k2 = 30.0;  // k_asym needs K0 >= |k_asym| > 0: below
+  with.p.k2 = 30.0;
+  with.p.k_asym = -150.0;  // |k_asym| <= K0 + chain + sat_force/sat_disp = 923 with K0 < 0
   ExtModel without = with;
-  without.p.sat_force = without.p.sat_disp = without.p.k3 = without.p.k2 = 0.0;
+  without.p.sat_force = without.p.sat_disp = without.p.k3 = without.p.k2 = without.p.k_asym = 0.0;
   without.p.K0 = with.p.K0 + with.p.sat_force / with.p.sat_disp;
   EXPECT_DOUBLE_EQ(elastic_tangent_at_rest(with.p), 527.0 / 0.72);
   EXPECT_EQ(elastic_tangent_at_rest(without.p), 0.0);

@@ -110,6 +110,28 @@ TEST(AsymmetryDefinitions, TheRecordsChooseTheirDefinition) {
   EXPECT_GT(d.error, 100.0 * c.error + 1e-3);
 }
 
+// A tension side softer than K0 alone (blindgen asymmetry_s34: a bilinear
+// spring 471 N/mm softer in tension, K0 151): the kink takes K0 below zero
+// while the chain holds the static tangent up, |k_asym| <= K0 + chain. Held
+// at |k_asym| <= K0, the fit stopped at the clamp and a friction asymmetry
+// took the leftover.
+TEST(AsymmetryDefinitions, AKinkPastK0AloneIsFound) {
+  ExtModel truth = paper_model();
+  const double chain = 1.0 / (1.0 / truth.p.Kpa + truth.p.cells / truth.p.Kr);
+  const double K0 = truth.p.K0;
+  truth.p.K0 = K0 - 0.5 * (K0 + 0.6 * chain);  // bilinear: -(K0 + 0.6 chain) max(x, 0)
+  truth.p.k_asym = -0.5 * (K0 + 0.6 * chain);
+  ASSERT_EQ(rtb_params_validate(&truth.p), RTB_OK);
+  ASSERT_GT(-truth.p.k_asym, truth.p.K0) << "past K0 alone";
+  const std::vector<Record> recs = measured_through(truth);
+  ExtModel from_kink = paper_model();
+  from_kink.p.k_asym = -0.5 * K0;
+  const ExtFitResult a = fit_word(asymmetry_word(), from_kink, recs);
+  EXPECT_NEAR(a.model.p.k_asym, truth.p.k_asym, 1e-4 * chain);
+  EXPECT_NEAR(a.model.p.K0, truth.p.K0, 1e-4 * chain);
+  EXPECT_LT(a.error, 1e-6);
+}
+
 }  // namespace
 }  // namespace rtb
 #endif

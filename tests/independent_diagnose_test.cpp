@@ -77,6 +77,15 @@ void expect_unexplained_naming(const Diagnosed &d, const char *what) {
   EXPECT_NE(d.R.verdict.find(what), std::string::npos) << d.R.verdict;
 }
 
+// refgen's spectrum alone: one cause, `relaxation_spectrum`, held out within
+// `times` refgen's force-noise floor.
+void expect_spectrum_alone(unsigned seed, double times) {
+  const Diagnosed d = diagnose_refgen("relaxation_spectrum", seed);
+  EXPECT_EQ(d.R.cause, "relaxation_spectrum") << d.R.verdict;
+  EXPECT_EQ(d.R.causes.size(), 1u) << d.R.verdict;
+  EXPECT_LT(d.R.extended_error_holdout, times * d.noise_floor) << d.R.verdict;
+}
+
 }  // namespace
 
 // Plain RT through another integrator and a real rig's chain: no effect.
@@ -154,10 +163,19 @@ TEST(IndependentDiagnose, SlackStripIsSlack) {
 // estimate of 1.43%).
 TEST(IndependentDiagnose, SpectrumBetweenTheBranchTimesIsNamed) {
   RTB_SKIP_UNDER_SANITIZERS();
-  const Diagnosed d = diagnose_refgen("relaxation_spectrum", 5);
-  EXPECT_EQ(d.R.cause, "relaxation_spectrum") << d.R.verdict;
-  EXPECT_EQ(d.R.causes.size(), 1u) << d.R.verdict;
-  EXPECT_LT(d.R.extended_error_holdout, 1.25 * d.noise_floor) << d.R.verdict;
+  expect_spectrum_alone(5, 1.25);
+}
+
+// refgen's seed-36 spectrum (nine branches, 0.01-100 s, weights tau^-0.21)
+// is small beside the chain: the plain fit makes the long memory with alpha
+// 0.51 and Kr 1188 (generator 0.20 and 5686), and the spectrum fitted from
+// there stayed in that basin (Kr 744, 1.88% held out, a 9% gain: the verdict
+// was `unexplained`). Refitted from the STS start of its records
+// (sts_core_restart), it is named near the floor (session 44: 1.54%
+// held out, refgen's floor 1.44%).
+TEST(IndependentDiagnose, SpectrumAbsorbedByTheChainIsNamed) {
+  RTB_SKIP_UNDER_SANITIZERS();
+  expect_spectrum_alone(36, 1.15);
 }
 
 // refgen's seed-6 strip is a 12-cell chain. With one displacement cut-off
@@ -309,16 +327,16 @@ TEST(IndependentDiagnose, DelayAndAsymmetryAreBothNamed) {
 }
 
 // Stage 5e (cause_pair.cpp): two words that pay only together. On the same
-// data the delay alone gains 20% held out and the asymmetry alone nothing
-// (-5%: the baseline has absorbed it); the pair takes the held-out error
-// from 19% to 1.6%, at the floor. With a first cause required to gain 30%,
-// no single word passes, and only the pair stage can name the two: the
-// delay is its lead (refused for its gain alone), the asymmetry its second
-// word, and each member must still pay against the other alone.
+// data the delay alone gains 19% held out and the asymmetry alone 38% (-5%
+// until session 44, when its kink was bounded by K0: the baseline had
+// absorbed it); the pair takes the held-out error from 19% to 1.6%, at the
+// floor. With a first cause required to gain 50%, no single word passes, and
+// only the pair stage can name the two, each member still paying against the
+// other alone.
 TEST(IndependentDiagnose, TwoWordsThatPayOnlyTogetherAreAPair) {
   RTB_SKIP_UNDER_SANITIZERS();
   rtb::DiagnoseOptions opt;
-  opt.min_gain = 0.3;
+  opt.min_gain = 0.5;
   const Diagnosed d = diagnose_refgen(std::vector<std::string>{"delay", "asymmetry"}, 12, opt);
   const refgen::Scenario sc = refgen::make_scenario({"delay", "asymmetry"}, 12, kDuration);
   ASSERT_EQ(d.R.causes.size(), 2u) << d.R.verdict;

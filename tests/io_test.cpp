@@ -578,7 +578,7 @@ TEST(IoParams, NegativeAndOutOfRangeNamed) {
 TEST(IoParams, LibraryValidationBecomesInputError) {
   // Each key is fine alone; the combination is rejected by rtb_params_validate.
   const std::string msg = expect_params_error(
-      rt_json("\"K0\":10,\"Kpa\":800,\"Kr\":3000,\"C0\":40,\"alpha\":0.2,\"k_asym\":20"),
+      rt_json("\"K0\":10,\"Kpa\":800,\"Kr\":3000,\"C0\":40,\"alpha\":0.2,\"k_asym\":200"),
       {"invalid parameters", "k_asym"});
   EXPECT_NE(msg.find(rtb_status_message(RTB_ERR_PARAM_RANGE)), std::string::npos) << msg;
   expect_params_error(rt_json(kCore + ",\"maxwell_k\":5"), {"maxwell_tau"});

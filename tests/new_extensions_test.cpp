@@ -331,3 +331,53 @@ TEST(NewExtensions, ValidationNamesTheField) {
   EXPECT_EQ(rtb_params_check(&p, &field), RTB_ERR_PARAM_RANGE);
   EXPECT_STREQ(field, "fric_asym");
 }
+
+// A kink k_asym |x| may soften one side below K0 alone, K0 < 0 included,
+// while the chain holds the static tangent up: |k_asym| <= K0 + chain (+
+// sat_force/sat_disp). A hold on either side relaxes to the closed-form
+// static law (K0 + chain +- k_asym) x; past the bound the check names
+// k_asym; a slack strip and a floating clearance with the softest side at
+// the bound stay finite, and the slack one never pushes.
+TEST(KinkPastK0, HoldRelaxesToEachSidesStaticTangent) {
+  rtb_params p = rt_default();
+  const double chain = 1.0 / (1.0 / p.Kpa + p.cells / p.Kr);  // 160 N/mm
+  p.alpha = 0.8;  // relaxes within the hold
+  p.K0 = -0.5 * chain;
+  p.k_asym = -(p.K0 + chain) * 0.999;  // tension tangent ~0, below K0 = -80 alone
+  ASSERT_EQ(rtb_params_validate(&p), RTB_OK);
+  const double dt = 1e-3;
+  for (double x0 : {1.5, -1.5}) {
+    SCOPED_TRACE(x0);
+    const double closed = (p.K0 + chain) * x0 + p.k_asym * std::fabs(x0);
+    EXPECT_NEAR(rtb_static_force(&p, x0), closed, 1e-12 * chain * std::fabs(x0));
+    std::vector<double> x;
+    for (int i = 0; i <= 1000; ++i) x.push_back(x0 * i / 1000.0);
+    x.resize(x.size() + 30000, x0);
+    const std::vector<double> F = run(p, x, dt);
+    EXPECT_NEAR(F.back(), closed, 1e-4 * chain * std::fabs(x0));
+  }
+  const char *field = nullptr;
+  rtb_params q = p;
+  q.k_asym = -(p.K0 + chain) * (1.0 + 1e-9);
+  EXPECT_EQ(rtb_params_check(&q, &field), RTB_ERR_PARAM_RANGE);
+  EXPECT_STREQ(field, "k_asym");
+  q.sat_force = 100.0, q.sat_disp = 0.5;  // the softening spring's tangent counts too
+  EXPECT_EQ(rtb_params_check(&q, &field), RTB_OK) << field;
+  q = p;
+  q.slack = 1, q.relax_width = 1.0;  // with a bounded relaxing force: |k_asym| <= K0 >= 0
+  q.K0 = 0.25 * chain, q.k_asym = -0.3 * chain;
+  EXPECT_EQ(rtb_params_check(&q, &field), RTB_ERR_PARAM_RANGE);
+  EXPECT_STREQ(field, "k_asym");
+  std::vector<double> x;
+  for (int i = 0; i <= 3000; ++i) x.push_back(1.0 * std::sin(2 * M_PI * 1.0 * i * dt));
+  for (int mode = 0; mode < 2; ++mode) {
+    q = p;
+    if (mode == 0) q.slack = 1;
+    else q.backlash = 0.2;  // the end floats inside the gap
+    ASSERT_EQ(rtb_params_validate(&q), RTB_OK);
+    for (double f : run(q, x, dt)) {
+      ASSERT_TRUE(std::isfinite(f));
+      if (mode == 0) EXPECT_GE(f, -1e-6 * chain);
+    }
+  }
+}

@@ -1,7 +1,8 @@
 // param_transform_test.cpp -- the Jacobian dp/dtheta of the optimizers'
 // parameter map (offline/identify/param_transform.h) against central finite
-// differences of the map itself, in particular at the |k_asym| <= K0 clamp,
-// where k_asym follows K0 and no longer its own coordinate (the gradient used
+// differences of the map itself, in particular at the k_asym clamp (|k_asym|
+// <= K0 + chain + sat_force/sat_disp, the static tangent), where k_asym
+// follows K0, Kpa and Kr and no longer its own coordinate (the gradient used
 // to be taken through the unclamped slope there: wrong at the clamp).
 #include <gtest/gtest.h>
 
@@ -57,19 +58,27 @@ TEST(ParamTransformJacobian, InsideTheClampItIsTheDiagonal) {
   expect_close(J, Eigen::MatrixXd(tf.dp_dtheta(th).asDiagonal()), "diagonal");
 }
 
-TEST(ParamTransformJacobian, AtTheClampKasymFollowsK0) {
+// The clamp is the library's static tangent, K0 + chain (+ sat_force /
+// sat_disp): at it k_asym follows K0, Kpa and Kr, not its own coordinate.
+TEST(ParamTransformJacobian, AtTheClampKasymFollowsTheStaticTangent) {
   const rtb_params p = base_params();
   const ParamTransform tf({P_K0, P_Kpa, P_k_asym}, p, 1e6);
+  const double chain = 1.0 / (1.0 / p.Kpa + p.cells / p.Kr);
   for (double ratio : {1.3, -1.3}) {
     SCOPED_TRACE(ratio);
     Eigen::VectorXd th = tf.to_theta(p);
-    th[2] = ratio * p.K0 / tf.scale[P_k_asym];  // raw k_asym beyond +-K0
+    th[2] = ratio * (p.K0 + chain) / tf.scale[P_k_asym];  // raw k_asym beyond the tangent
     const rtb_params q = tf.to_params(th, p);
-    ASSERT_EQ(q.k_asym, std::copysign(q.K0, ratio)) << "the map clamps";
+    ASSERT_EQ(q.k_asym, std::copysign(k_asym_bound(q), ratio)) << "the map clamps";
+    EXPECT_NEAR(std::fabs(q.k_asym), q.K0 + chain, 1e-6 * chain) << "at the library's bound";
+    EXPECT_GT(std::fabs(q.k_asym), q.K0) << "past K0 alone";
+    const char *bad = "";
+    EXPECT_EQ(rtb_params_check(&q, &bad), RTB_OK) << bad;
     const Eigen::MatrixXd J = tf.jacobian(th, p);
     expect_close(J, fd_jacobian(tf, th, p), "clamped");
     EXPECT_EQ(J(2, 2), 0.0);
     EXPECT_EQ(J(2, 0), std::copysign(tf.dp_dtheta(th)[0], ratio));
+    EXPECT_GT(J(2, 1) * ratio, 0.0) << "a stiffer Kpa raises the bound";
   }
 }
 
@@ -77,10 +86,11 @@ TEST(ParamTransformJacobian, ClampAgainstAFixedK0) {
   const rtb_params p = base_params();
   const ParamTransform tf({P_Kpa, P_k_asym}, p, 1e6);  // K0 not free
   Eigen::VectorXd th = tf.to_theta(p);
-  th[1] = 2.0 * p.K0 / tf.scale[P_k_asym];
+  th[1] = 2.0 * (p.K0 + 1.0 / (1.0 / p.Kpa + p.cells / p.Kr)) / tf.scale[P_k_asym];
   const Eigen::MatrixXd J = tf.jacobian(th, p);
   expect_close(J, fd_jacobian(tf, th, p), "fixed K0");
   EXPECT_EQ(J(1, 1), 0.0);
+  EXPECT_GT(J(1, 0), 0.0);
 }
 
 // Next to a softening spring K0 may go negative, down to -(chain +
@@ -102,11 +112,12 @@ TEST(ParamTransformJacobian, SignedK0HeldAtItsFloor) {
     SCOPED_TRACE(K0);
     Eigen::VectorXd th = tf.to_theta(p);
     th[0] = K0 / tf.scale[P_K0];
-    th[5] = -0.3 * floor / tf.scale[P_k_asym];  // raw k_asym: clamped to 0 with K0 < 0
+    th[5] = -0.3 * floor / tf.scale[P_k_asym];  // raw k_asym: kept while K0 - floor exceeds it
     const rtb_params q = tf.to_params(th, p);
     const char *bad = "";
     EXPECT_EQ(rtb_params_check(&q, &bad), RTB_OK) << bad;
-    EXPECT_EQ(q.k_asym, 0.0);
+    if (K0 > floor) EXPECT_NEAR(q.k_asym, -0.3 * floor, 1e-9 * -floor);
+    else EXPECT_EQ(q.k_asym, 0.0) << "K0 at its floor leaves no tangent for a kink";
     if (K0 > floor) EXPECT_EQ(q.K0, K0);
     else EXPECT_NEAR(q.K0, floor, -1e-6 * floor);
     const Eigen::MatrixXd J = tf.jacobian(th, p);

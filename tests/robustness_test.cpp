@@ -238,7 +238,8 @@ TEST(RobustErrors, ParameterRange) {
       {"Kr < 0", [](rtb_params &p) { p.Kr = -1.0; }},
       {"Kr = 0", [](rtb_params &p) { p.Kr = 0.0; }},
       {"K0 < -chain", [](rtb_params &p) { p.K0 = -161.0; }},  /* chain 1/(1/800 + 15/3000) = 160 */
-      {"k_asym != 0, K0 < 0", [](rtb_params &p) { p.K0 = -100.0; p.k_asym = 1.0; }},
+      /* the static tangent K0 + chain - |k_asym| = -100 + 160 - 61 < 0 */
+      {"|k_asym| > K0 + chain, K0 < 0", [](rtb_params &p) { p.K0 = -100.0; p.k_asym = 61.0; }},
       {"C0 = 0", [](rtb_params &p) { p.C0 = 0.0; }},
       {"C0 < 0", [](rtb_params &p) { p.C0 = -40.0; }},
       {"|k_asym| > K0", [](rtb_params &p) { p.k_asym = 1.5 * p.K0; }},

@@ -234,7 +234,7 @@ bool other_definition(const Candidate &c, const ExtModel &start, const DataScale
   const double x = 2.0 / 3.0 * s.Xmax;  // k_asym x = k2 x^2 there
   rtb_params &p = alt_start->p;
   if (to_quadratic) p.k2 = p.k_asym / x, p.k_asym = 0.0;
-  else p.k_asym = std::max(-0.9 * p.K0, std::min(0.9 * p.K0, p.k2 * x)), p.k2 = 0.0;
+  else p.k_asym = std::max(-0.9 * k_asym_bound(p), std::min(0.9 * k_asym_bound(p), p.k2 * x)), p.k2 = 0.0;
   return true;
 }
 

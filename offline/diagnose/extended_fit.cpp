@@ -125,9 +125,15 @@ double extended_error(const ExtModel &m, const std::vector<Record> &recs,
   return J0 > 0.0 ? std::sqrt(J / J0) : INFINITY;
 }
 
-ExtFitResult fit_extended(const std::vector<Record> &recs, const ExtModel &start,
+ExtFitResult fit_extended(const std::vector<Record> &recs, const ExtModel &start_in,
                           const ExtFitSpec &spec, const MisfitOptions &opt) {
-  ParamTransform tf(spec.free, start.p, stiffness_cap_for(recs));
+  ParamTransform tf(spec.free, start_in.p, stiffness_cap_for(recs));
+  // A start assembled from another fit (a chain from the STS inversion, a
+  // core from another basin) may hold a kink past the static tangent of its
+  // new chain (|k_asym| <= K0 + chain, rtb_params_check): the map's clamps
+  // take it back inside.
+  ExtModel start = start_in;
+  if (rtb_params_validate(&start.p) != RTB_OK) start.p = tf.to_params(tf.to_theta(start.p), start.p);
   for (ParamId id : spec.free)
     if (spec.scale[id] > 0.0 && (param_get(start.p, id) == 0.0 || is_ramp(id)))
       tf.scale[id] = std::fmax(std::fabs(param_get(start.p, id)), spec.scale[id]);

@@ -212,7 +212,7 @@ CandidateScreen screen_one(const Candidate &c, int variant, const ExtModel &m,
     // gets a joint fit if it ranks high, from a default positive size.
     if (id == P_mullins && v > 0.0) v = std::min(v, 0.9);
     if (id == P_fric_asym) v = std::max(-0.9, std::min(0.9, v));
-    if (id == P_k_asym) v = std::max(-0.9 * s.start.p.K0, std::min(0.9 * s.start.p.K0, v));
+    if (id == P_k_asym) v = std::max(-0.9 * k_asym_bound(s.start.p), std::min(0.9 * k_asym_bound(s.start.p), v));
     if (positive && !(v > 0.0)) v = extra_start_value(id, sc);
     param_ref(s.start.p, id) = v;
   }

@@ -69,8 +69,11 @@ constexpr double kAlphaLo = RTB_ALPHA_MIN, kAlphaHi = 1.0;
 double logistic(double t) { return 1.0 / (1.0 + std::exp(-t)); }
 }  // namespace
 
+double k_asym_bound(const rtb_params &p) { return std::fmax(p.K0 - k0_floor(p).value, 0.0); }
+
 void admit_K0(rtb_params &p) {
-  if (!(p.sat_force > 0.0) || (p.slack != 0.0 && p.relax_width > 0.0)) p.K0 = std::max(p.K0, 0.0);
+  const bool below_zero = p.sat_force > 0.0 || p.k_asym != 0.0;
+  if (!below_zero || (p.slack != 0.0 && p.relax_width > 0.0)) p.K0 = std::max(p.K0, 0.0);
 }
 
 bool is_ramp(ParamId id) { return kind_of(id, 0.0) == Kind::Ramp; }
@@ -89,7 +92,9 @@ double stiffness_cap_for(const std::vector<Record> &recs) {
 ParamTransform::ParamTransform(std::vector<ParamId> free_ids, const rtb_params &start,
                                double cap)
     : free(std::move(free_ids)), stiffness_cap(std::isfinite(cap) && cap > 0.0 ? cap : 0.0) {
-  signed_K0 = contains(free, P_K0) && contains(free, P_sat_force);
+  // A softening spring or a kink may take K0 below zero: blindgen
+  // asymmetry_s34's tension side is 320 N/mm softer than K0 = 151.
+  signed_K0 = contains(free, P_K0) && (contains(free, P_sat_force) || contains(free, P_k_asym));
   for (ParamId id : free) {
     const double v = std::fabs(param_get(start, id));
     scale[id] = v > 0.0 ? v : 1.0;
@@ -145,9 +150,9 @@ rtb_params ParamTransform::to_params(const Eigen::VectorXd &th, const rtb_params
         break;
     }
   }
-  // Keep K0 above its floor and |k_asym| <= max(K0, 0) (rtb_params_check) by clamping.
+  // Keep K0 above its floor and |k_asym| within k_asym_bound (rtb_params_check) by clamping.
   if (signed_K0 && p.K0 < k0_floor(p).value) p.K0 = k0_floor(p).value;
-  const double asym_max = std::fmax(p.K0, 0.0);
+  const double asym_max = k_asym_bound(p);
   if (std::fabs(p.k_asym) > asym_max) p.k_asym = std::copysign(asym_max, p.k_asym);
   if (p.alpha >= 1.0) p.alpha = std::nextafter(1.0, 0.0);
   return p;
@@ -211,11 +216,21 @@ Eigen::MatrixXd ParamTransform::jacobian(const Eigen::VectorXd &th, const rtb_pa
   }
   const Eigen::Index ia = index_of(P_k_asym);
   if (ia < 0) return J;
-  // The same test as to_params: raw k_asym against the mapped K0.
+  // The same test as to_params: raw k_asym against the bound of the mapped
+  // parameters, K0 - floor(Kpa, Kr, sat_force, sat_disp).
   const double raw = th[ia] * scale[P_k_asym];
-  if (!(std::fabs(raw) > std::fmax(p.K0, 0.0))) return J;
+  if (!(std::fabs(raw) > k_asym_bound(p))) return J;
   J.row(ia).setZero();
-  if (i0 >= 0 && p.K0 > 0.0) J.row(ia) = std::copysign(1.0, raw) * J.row(i0);
+  if (!(k_asym_bound(p) > 0.0)) return J;  // pinned at 0
+  if (i0 >= 0) J.row(ia) = J.row(i0);
+  const K0Floor f = k0_floor(p);
+  const std::pair<ParamId, double> deps[] = {
+      {P_Kpa, f.d_Kpa}, {P_Kr, f.d_Kr}, {P_sat_force, f.d_sat_force}, {P_sat_disp, f.d_sat_disp}};
+  for (const auto &dep : deps) {
+    const Eigen::Index j = index_of(dep.first);
+    if (j >= 0) J.row(ia) -= dep.second * d[j] * Eigen::RowVectorXd::Unit(J.cols(), j);
+  }
+  J.row(ia) *= std::copysign(1.0, raw);
   return J;
 }
 

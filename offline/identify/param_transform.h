@@ -10,7 +10,7 @@
 // sizes of the extensions (maxwell_k, viscous_c, mass, mullins, sat_force),
 // which a fit on data without that effect drives to 0 -- are optimized
 // linearly, p = scale theta, inside the box [0, upper] (K0 next to a
-// softening spring: [-cap, upper], see signed_K0) that the trust-region
+// softening spring or a kink: [-cap, upper], see signed_K0) that the trust-region
 // optimizer enforces by projection. In log coordinates that optimum is
 // infinitely far away: Gauss-Newton crawled towards it a few percent per
 // iteration (60 iterations for a viscous term on delay data, each costing a
@@ -42,7 +42,8 @@ struct ParamTransform {
   // K0 may go negative (down to -(chain + sat_force/sat_disp), or -chain
   // with slack: rtb_params_check) when a softening spring is fitted with it:
   // a tanh that takes more than K0 (blindgen softening_s4: 0.8 of the
-  // static stiffness, K0 = -435 N/mm).
+  // static stiffness, K0 = -435 N/mm), or when a kink k_asym |x| is
+  // fitted with it.
   bool signed_K0 = false;
 
   ParamTransform(std::vector<ParamId> free_ids, const rtb_params &start,
@@ -50,12 +51,12 @@ struct ParamTransform {
   Eigen::VectorXd to_theta(const rtb_params &p) const;
   rtb_params to_params(const Eigen::VectorXd &theta, const rtb_params &base) const;
   // dp_i / dtheta_i at theta of each coordinate's own map (the diagonal of
-  // the Jacobian before the |k_asym| <= K0 clamp).
+  // the Jacobian before the k_asym_bound clamp).
   Eigen::VectorXd dp_dtheta(const Eigen::VectorXd &theta) const;
   // The whole Jacobian dp_free / dtheta of to_params(theta, base): the
   // diagonal above, except where to_params clamps. A signed K0 held at its
-  // floor follows Kpa, Kr and the softening spring; k_asym clamped to +-max(K0, 0) follows K0's
-  // row (or is constant 0) and not its own coordinate, so gradients through
+  // floor follows Kpa, Kr and the softening spring; k_asym clamped to +-k_asym_bound follows the
+  // bound's row (or is constant 0) and not its own coordinate, so gradients through
   // the clamps are exact.
   Eigen::MatrixXd jacobian(const Eigen::VectorXd &theta, const rtb_params &base) const;
   // Chain rule: dJ/dtheta from dJ/dp (every ParamId) at theta, through the
@@ -68,7 +69,12 @@ struct ParamTransform {
   double lower_of(ParamId id) const;  // lower end of a Ramp parameter's box
 };
 
-// K0 < 0 is admissible only next to a softening spring, and not on a slack
+// rtb_params_check's bound on |k_asym|, held strictly inside: the static
+// tangent K0 + chain + sat_force/sat_disp (K0 on a slack strip with
+// relax_width), 0 when that is negative.
+double k_asym_bound(const rtb_params &p);
+
+// K0 < 0 is admissible only next to a softening spring or a kink, and not on a slack
 // strip with relax_width (rtb_params_check); a model without one (a cause
 // switched off, a baseline restarted from a candidate's basin) takes K0 back
 // to 0.

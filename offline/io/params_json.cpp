@@ -168,7 +168,7 @@ rtb_params params_from_json(const nlohmann::json &doc, const std::string &origin
     if (!k) fail(std::string("invalid parameters: ") + bad + ": " + rtb_status_message(st));
     const std::string key = in_params(*k) ? std::string("params.") + bad : std::string(bad);
     std::string why = rtb_status_message(st);
-    if (std::string(bad) == "k_asym") why = "|params.k_asym| must not exceed params.K0 (and is 0 when K0 < 0)";
+    if (std::string(bad) == "k_asym") why = "|params.k_asym| must not exceed the static tangent K0 + 1/(1/Kpa + cells/Kr) + sat_force/sat_disp (K0 on a slack strip with relax_width)";
     else if (std::string(bad) == "K0") why = p.slack != 0.0 && p.relax_width > 0.0
                 ? "must be >= 0 for a slack specimen with relax_width (a floating end needs a law that rises again)"
                 : "must be >= -(1/(1/Kpa + cells/Kr) + sat_force/sat_disp): the static stiffness at x = 0 must not be negative";

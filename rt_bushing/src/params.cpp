@@ -60,18 +60,24 @@ static rtb_real chain_static(const rtb_params *p) { return 1.0 / (1.0 / p->Kpa +
 /* Rules that tie two fields together; *field names the one to change. */
 static rtb_status check_pairs(const rtb_params *p, const char **field) {
   /* The static tangent at x = 0, K0 + chain + sat_force/sat_disp (all
-   * dashpots relaxed, rtb_static_force), must not be negative. K0 < 0 lets a
+   * dashpots relaxed, rtb_static_force), must not be negative, on either
+   * side of the asymmetry's kink: |k_asym| <= K0 + chain + sat. K0 < 0 lets a
    * softening spring take more than K0 (an elastomer that loses most of its
    * static stiffness at large strain); the law at large |x| may then fall,
    * except for a slack specimen: its floating end needs a force that grows
    * again above the input (a root to float to), so K0 + chain >= 0 there. */
   const rtb_real chain = chain_static(p);
   const rtb_real sat = p->sat_disp > 0.0 && p->slack == 0.0 ? p->sat_force / p->sat_disp : 0.0;
+  /* a slack end floating with a bounded relaxing force g R needs a law that
+   * still grows: K0 >= 0 and |k_asym| <= K0 there */
+  const int grows = p->slack != 0.0 && p->relax_width > 0.0;
+  const rtb_real tangent = grows ? p->K0 : p->K0 + chain + sat;
   struct { int bad; const char *name; } rules[] = {
       {!(p->K0 + chain + sat >= 0.0), "K0"},                     /* K0 >= -(chain + sat) */
-      {fabs(p->k_asym) > (p->K0 > 0.0 ? p->K0 : 0.0), "k_asym"}, /* |k_asym| <= max(K0, 0) */
-      /* a slack end floating with a bounded relaxing force g R needs a law that still grows */
-      {p->slack != 0.0 && p->relax_width > 0.0 && p->K0 < 0.0, "K0"},
+      {grows && p->K0 < 0.0, "K0"},
+      /* the same tangent on either side of a kink k_asym |x|: a tension side
+       * softer than K0 alone stays admissible while the chain holds it up */
+      {!(fabs(p->k_asym) <= (tangent > 0.0 ? tangent : 0.0)), "k_asym"},
       {p->maxwell_k > 0.0 && !(p->maxwell_tau > 0.0), "maxwell_tau"},
       {p->sat_force > 0.0 && !(p->sat_disp > 0.0), "sat_disp"},
       {(p->spec_k > 0.0 || p->spec_tau_max > 0.0) && !(p->spec_tau_min > 0.0), "spec_tau_min"},

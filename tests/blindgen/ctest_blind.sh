@@ -40,6 +40,11 @@
 #                              paying nothing there (a Maxwell branch at
 #                              1.36 s named instead before session 41's
 #                              STS restart of every insignificant later word).
+#   delay,asymmetry:34         a bilinear spring 471 N/mm softer in tension
+#                              than K0 = 151 alone: the kink held at
+#                              |k_asym| <= K0 left the delay unnamed (the
+#                              bound is the static tangent K0 + chain since
+#                              session 44).
 # Exit 77 (ctest: skipped) without numpy and scipy (python3-numpy,
 # python3-scipy; `make deps` installs them).
 set -u
