@@ -130,4 +130,40 @@ TEST(ParamTransformJacobian, SignedK0HeldAtItsFloor) {
   }
 }
 
+// A kink without a softening spring: K0 may go below zero, but not below
+// -|k_asym| (kink_floor), so the stiffer side keeps a spring of its own and
+// the kink cannot free the core instead (blindgen maxwell_s35: K0 = -7578
+// beside k_asym = -7).
+TEST(ParamTransformJacobian, KinkHoldsK0AboveMinusItsSize) {
+  rtb_params p = base_params();
+  const ParamTransform tf({P_K0, P_Kpa, P_Kr, P_k_asym}, p, 1e6);
+  ASSERT_TRUE(tf.signed_K0);
+  ASSERT_TRUE(tf.kink_floor);
+  const double chain = 1.0 / (1.0 / p.Kpa + p.cells / p.Kr);  // 160
+  struct Case { double K0, k_asym, K0_mapped; };
+  const Case cases[] = {
+      {-50.0, -70.0, -50.0},    // inside both floors: kept
+      {-90.0, 60.0, -60.0},     // below -|k_asym|: held there
+      {-90.0, -60.0, -60.0},    // either sign of the kink
+      {-300.0, -150.0, -150.0}, // the kink floor above the chain's -160
+      {-300.0, 0.0, 0.0},       // no kink: K0 >= 0 as a plain core
+  };
+  for (const Case &c : cases) {
+    SCOPED_TRACE(testing::Message() << "K0 " << c.K0 << " k_asym " << c.k_asym);
+    Eigen::VectorXd th = tf.to_theta(p);
+    th[0] = c.K0 / tf.scale[P_K0];
+    th[3] = c.k_asym / tf.scale[P_k_asym];
+    const rtb_params q = tf.to_params(th, p);
+    EXPECT_NEAR(q.K0, c.K0_mapped, 1e-9 * chain);
+    const char *bad = "";
+    EXPECT_EQ(rtb_params_check(&q, &bad), RTB_OK) << bad;
+    if (c.k_asym != 0.0) expect_close(tf.jacobian(th, p), fd_jacobian(tf, th, p), "kink floor");
+  }
+  // With a softening spring free too, the spring is the reason for K0 < 0:
+  // only the static tangent's floor applies.
+  const ParamTransform soft({P_K0, P_Kpa, P_Kr, P_k_asym, P_sat_force, P_sat_disp}, p, 1e6);
+  EXPECT_TRUE(soft.signed_K0);
+  EXPECT_FALSE(soft.kink_floor);
+}
+
 }  // namespace

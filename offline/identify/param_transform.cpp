@@ -95,6 +95,7 @@ ParamTransform::ParamTransform(std::vector<ParamId> free_ids, const rtb_params &
   // A softening spring or a kink may take K0 below zero: blindgen
   // asymmetry_s34's tension side is 320 N/mm softer than K0 = 151.
   signed_K0 = contains(free, P_K0) && (contains(free, P_sat_force) || contains(free, P_k_asym));
+  kink_floor = signed_K0 && !contains(free, P_sat_force);
   for (ParamId id : free) {
     const double v = std::fabs(param_get(start, id));
     scale[id] = v > 0.0 ? v : 1.0;
@@ -150,8 +151,8 @@ rtb_params ParamTransform::to_params(const Eigen::VectorXd &th, const rtb_params
         break;
     }
   }
-  // Keep K0 above its floor and |k_asym| within k_asym_bound (rtb_params_check) by clamping.
-  if (signed_K0 && p.K0 < k0_floor(p).value) p.K0 = k0_floor(p).value;
+  // Keep K0 above its floors and |k_asym| within k_asym_bound (rtb_params_check) by clamping.
+  if (signed_K0) p.K0 = std::fmax(p.K0, std::fmax(k0_floor(p).value, kink_floor_at(th)));
   const double asym_max = k_asym_bound(p);
   if (std::fabs(p.k_asym) > asym_max) p.k_asym = std::copysign(asym_max, p.k_asym);
   if (p.alpha >= 1.0) p.alpha = std::nextafter(1.0, 0.0);
@@ -186,6 +187,13 @@ Eigen::VectorXd ParamTransform::dp_dtheta(const Eigen::VectorXd &th) const {
   return d;
 }
 
+double ParamTransform::kink_floor_at(const Eigen::VectorXd &th) const {
+  if (!kink_floor) return -INFINITY;
+  for (size_t i = 0; i < free.size(); ++i)
+    if (free[i] == P_k_asym) return -std::fabs(th[i] * scale[P_k_asym]);
+  return -INFINITY;
+}
+
 double ParamTransform::lower_of(ParamId id) const {
   return ramp_lower(id, signed_K0, stiffness_cap);
 }
@@ -204,7 +212,12 @@ Eigen::MatrixXd ParamTransform::jacobian(const Eigen::VectorXd &th, const rtb_pa
   const double k0_boxed =
       i0 >= 0 ? std::fmin(std::fmax(th[i0] * scale[P_K0], lower_of(P_K0)), ramp_upper(P_K0, stiffness_cap))
               : 0.0;
-  if (i0 >= 0 && signed_K0 && k0_boxed < k0_floor(p).value) {
+  const Eigen::Index ia = index_of(P_k_asym);
+  const double kink = kink_floor_at(th);
+  if (i0 >= 0 && signed_K0 && k0_boxed < kink && kink > k0_floor(p).value) {
+    J(i0, i0) = 0.0;  // K0 = -|k_asym|
+    J(i0, ia) = -std::copysign(1.0, th[ia]) * d[ia];
+  } else if (i0 >= 0 && signed_K0 && k0_boxed < k0_floor(p).value) {
     const K0Floor f = k0_floor(p);
     J(i0, i0) = 0.0;
     const std::pair<ParamId, double> deps[] = {
@@ -214,7 +227,6 @@ Eigen::MatrixXd ParamTransform::jacobian(const Eigen::VectorXd &th, const rtb_pa
       if (j >= 0) J(i0, j) = dep.second * d[j];
     }
   }
-  const Eigen::Index ia = index_of(P_k_asym);
   if (ia < 0) return J;
   // The same test as to_params: raw k_asym against the bound of the mapped
   // parameters, K0 - floor(Kpa, Kr, sat_force, sat_disp).

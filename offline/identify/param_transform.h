@@ -45,6 +45,12 @@ struct ParamTransform {
   // static stiffness, K0 = -435 N/mm), or when a kink k_asym |x| is
   // fitted with it.
   bool signed_K0 = false;
+  // With a kink but no softening spring, K0 stays >= -|k_asym| as well: one
+  // side may be softer than nothing (the chain holds it up), the other keeps
+  // a spring of its own. Without it the kink's fit freed the core instead:
+  // blindgen maxwell_s35's branch imitated by K0 = -7578 beside k_asym = -7
+  // (Kpa 9630, Kr 1.6e6, alpha 0.80), a 0.1% asymmetry named first.
+  bool kink_floor = false;
 
   ParamTransform(std::vector<ParamId> free_ids, const rtb_params &start,
                  double stiffness_cap = 0.0);
@@ -55,7 +61,7 @@ struct ParamTransform {
   Eigen::VectorXd dp_dtheta(const Eigen::VectorXd &theta) const;
   // The whole Jacobian dp_free / dtheta of to_params(theta, base): the
   // diagonal above, except where to_params clamps. A signed K0 held at its
-  // floor follows Kpa, Kr and the softening spring; k_asym clamped to +-k_asym_bound follows the
+  // floor follows Kpa, Kr and the softening spring (or -|k_asym|, kink_floor); k_asym clamped to +-k_asym_bound follows the
   // bound's row (or is constant 0) and not its own coordinate, so gradients through
   // the clamps are exact.
   Eigen::MatrixXd jacobian(const Eigen::VectorXd &theta, const rtb_params &base) const;
@@ -67,6 +73,8 @@ struct ParamTransform {
   Eigen::VectorXd lower() const;
   Eigen::VectorXd upper() const;
   double lower_of(ParamId id) const;  // lower end of a Ramp parameter's box
+  // -|k_asym| at theta when kink_floor holds, else -inf.
+  double kink_floor_at(const Eigen::VectorXd &theta) const;
 };
 
 // rtb_params_check's bound on |k_asym|, held strictly inside: the static

@@ -45,6 +45,9 @@
 #                              |k_asym| <= K0 left the delay unnamed (the
 #                              bound is the static tangent K0 + chain since
 #                              session 44).
+#   maxwell:35                 a Maxwell branch that a 0.1% kink imitated
+#                              by taking K0 to -7578 (`asymmetry`, a wrong
+#                              word, before a kink held K0 >= -|k_asym|).
 # Exit 77 (ctest: skipped) without numpy and scipy (python3-numpy,
 # python3-scipy; `make deps` installs them).
 set -u
