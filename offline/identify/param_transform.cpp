@@ -207,8 +207,19 @@ Eigen::MatrixXd ParamTransform::jacobian(const Eigen::VectorXd &th, const rtb_pa
     return (Eigen::Index)-1;
   };
   const rtb_params p = to_params(th, base);
+  // Row `row` += sign d floor(Kpa, Kr, sat_force, sat_disp) / dtheta.
+  auto add_floor_row = [&](Eigen::Index row, double sign) {
+    const K0Floor f = k0_floor(p);
+    const std::pair<ParamId, double> deps[] = {
+        {P_Kpa, f.d_Kpa}, {P_Kr, f.d_Kr}, {P_sat_force, f.d_sat_force}, {P_sat_disp, f.d_sat_disp}};
+    for (const auto &dep : deps) {
+      const Eigen::Index j = index_of(dep.first);
+      if (j >= 0) J(row, j) += sign * dep.second * d[j];
+    }
+  };
   const Eigen::Index i0 = index_of(P_K0);
-  // K0 held at its floor: it follows Kpa, Kr and the softening spring.
+  // K0 held at a floor: -|k_asym| (kink_floor), or the static tangent's, which
+  // follows Kpa, Kr and the softening spring.
   const double k0_boxed =
       i0 >= 0 ? std::fmin(std::fmax(th[i0] * scale[P_K0], lower_of(P_K0)), ramp_upper(P_K0, stiffness_cap))
               : 0.0;
@@ -218,14 +229,8 @@ Eigen::MatrixXd ParamTransform::jacobian(const Eigen::VectorXd &th, const rtb_pa
     J(i0, i0) = 0.0;  // K0 = -|k_asym|
     J(i0, ia) = -std::copysign(1.0, th[ia]) * d[ia];
   } else if (i0 >= 0 && signed_K0 && k0_boxed < k0_floor(p).value) {
-    const K0Floor f = k0_floor(p);
     J(i0, i0) = 0.0;
-    const std::pair<ParamId, double> deps[] = {
-        {P_Kpa, f.d_Kpa}, {P_Kr, f.d_Kr}, {P_sat_force, f.d_sat_force}, {P_sat_disp, f.d_sat_disp}};
-    for (const auto &dep : deps) {
-      const Eigen::Index j = index_of(dep.first);
-      if (j >= 0) J(i0, j) = dep.second * d[j];
-    }
+    add_floor_row(i0, 1.0);
   }
   if (ia < 0) return J;
   // The same test as to_params: raw k_asym against the bound of the mapped
@@ -235,13 +240,7 @@ Eigen::MatrixXd ParamTransform::jacobian(const Eigen::VectorXd &th, const rtb_pa
   J.row(ia).setZero();
   if (!(k_asym_bound(p) > 0.0)) return J;  // pinned at 0
   if (i0 >= 0) J.row(ia) = J.row(i0);
-  const K0Floor f = k0_floor(p);
-  const std::pair<ParamId, double> deps[] = {
-      {P_Kpa, f.d_Kpa}, {P_Kr, f.d_Kr}, {P_sat_force, f.d_sat_force}, {P_sat_disp, f.d_sat_disp}};
-  for (const auto &dep : deps) {
-    const Eigen::Index j = index_of(dep.first);
-    if (j >= 0) J.row(ia) -= dep.second * d[j] * Eigen::RowVectorXd::Unit(J.cols(), j);
-  }
+  add_floor_row(ia, -1.0);
   J.row(ia) *= std::copysign(1.0, raw);
   return J;
 }

@@ -77,7 +77,7 @@ struct ParamTransform {
   double kink_floor_at(const Eigen::VectorXd &theta) const;
 };
 
-// rtb_params_check's bound on |k_asym|, held strictly inside: the static
+// rtb_params_check's bound on |k_asym|: the static
 // tangent K0 + chain + sat_force/sat_disp (K0 on a slack strip with
 // relax_width), 0 when that is negative.
 double k_asym_bound(const rtb_params &p);
