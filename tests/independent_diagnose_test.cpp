@@ -178,6 +178,18 @@ TEST(IndependentDiagnose, SpectrumAbsorbedByTheChainIsNamed) {
   expect_spectrum_alone(36, 1.15);
 }
 
+// refgen's seed-37 spectrum (nine branches from 10 ms, the fastest the
+// heaviest) was screened from 30 sample intervals, where the baseline's
+// dashpots already made the fast relaxation; the joint fit does not move the
+// branches, and it stopped at 1.76% held out, an 11% gain at a 1.36% floor
+// (`unexplained`). Refitted with its branches a half decade earlier
+// (moved_spectrum_starts, cause_round.cpp), it is named at the floor
+// (session 46: 1.39% held out, k 687 N/mm for the generator's 697).
+TEST(IndependentDiagnose, SpectrumScreenedLateIsNamed) {
+  RTB_SKIP_UNDER_SANITIZERS();
+  expect_spectrum_alone(37, 1.1);
+}
+
 // refgen's seed-6 strip is a 12-cell chain. With one displacement cut-off
 // for all records (the widest any needed) slack at the tool's 15 cells left
 // 1.77% held out (floor 0.78%), a relaxation spectrum was accepted second
