@@ -260,19 +260,18 @@ typedef struct rtb_params {
  * budget runs out the step commits its best iterate and returns
  * RTB_NOT_CONVERGED. A 1 kHz step at N = 15 uses about two sweeps of its
  * moving cells (~22 units at the default tolerance, BM_Extension's input);
- * with the smoothing s = 100 a median of 307 (session 36; 387 before), with
- * every extension, smoothing and a clearance 310, at most 1135 (459 and
- * 2496 before: tests/smoothed_law_cost_test.cpp).
+ * with the smoothing s = 100 a median of 242 (session 47's smoothed
+ * Chebyshev step; 307 in session 36, 387 before), with every extension,
+ * smoothing and a clearance 242, at most 835 (459 and 2496 in session 35:
+ * tests/smoothed_law_cost_test.cpp).
  * A unit costs ~26-28 ns on the benchmark machine (a 2-vCPU AMD EPYC guest;
- * session 36's cheaper smoothed inverse fits ~5% more Newton iterations,
- * whose linear algebra is not counted, into the same units),
+ * the linear algebra of the Newton iterations is not counted),
  * so the default bounds a step at ~110 us; a host that needs a tighter bound
  * sets max_work (per call, so per element; or builds with -DRTB_STEP_WORK=W
  * to change the default): at 640 units the slowest of 90 000 steps over
- * 300 random valid configurations measured 18.6 us (session 22; 16.6% of
- * those extreme steps unconverged, 1.5% at the default; since session 35's
- * friction-limit start 11.5% and 1.05%, and 22.0 us in a guest state where
- * session 22's library took 35.5 us), at the price of more
+ * 300 random valid configurations measured 24 us and 5.8% of those extreme
+ * steps returned unconverged (0.37% at the default; session 46's library
+ * 9.5% and 0.44%; session 22's 16.6% and 1.5%), at the price of more
  * RTB_NOT_CONVERGED steps on hard configurations (BM_RandomConfigs/budget:W,
  * docs/benchmarks.md). */
 #ifndef RTB_STEP_WORK

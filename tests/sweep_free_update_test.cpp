@@ -18,8 +18,6 @@
 
 namespace {
 
-constexpr double kTwoPi = 6.283185307179586476925;
-
 struct Outcome {
   double worst = 0.0;       // max relative residual with the exact law, all stages
   double worst_pred = 0.0;  // ... over the stages accepted on a prediction
@@ -32,28 +30,13 @@ struct Outcome {
 Outcome run(int integrator, double alpha, double tol) {
   rtb_params p = rtbtest::paper_params(RTB_MODEL_RT, 15, integrator);
   p.alpha = alpha;
-  rtb_settings set;
-  rtb_settings_default(&set);
-  set.tol = tol;
-  rtb_state s;
-  EXPECT_EQ(rtb_state_init(&s, &p, 0.0), RTB_OK);
   Outcome o;
-  unsigned long long seed = 7;
   const int steps = 600;
-  for (int i = 1; i <= steps; ++i) {
-    seed = seed * 6364136223846793005ULL + 1442695040888963407ULL;
-    const double u = (double)(seed >> 11) * (1.0 / 9007199254740992.0) - 0.5;
-    const double x = std::sin(kTwoPi * 10.0 * i * 1e-3) + 0.0346 * u;
-    rtb_state out;
-    rtb_stage st[2];
-    double F, dF;
-    rtb_step_info info;
-    const rtb_status q =
-        rtb_step_core(&s, &p, &set, x, 1e-3, &out, &F, &dF, st, &info, RTB_BACKLASH_ITERS);
+  rtbtest::drive_noisy_sine(p, tol, steps, 7, [&](int i, rtb_status q, const rtb_step_info &info,
+                                                  const rtb_stage *st) {
     EXPECT_EQ(q, RTB_OK) << "step " << i;
-    if (q != RTB_OK) return o;
     o.work += info.work;
-    for (int j = 0; j < rtb_integrator_stages(&p); ++j) {
+    for (int j = 0; q >= 0 && j < rtb_integrator_stages(&p); ++j) {
       int locked = 0, loaded = 0;
       const double e = rtbtest::full_residual(p, st[j], &locked, &loaded);
       o.worst = std::fmax(o.worst, e);
@@ -62,8 +45,7 @@ Outcome run(int integrator, double alpha, double tol) {
         o.worst_pred = std::fmax(o.worst_pred, e);
       }
     }
-    s = out;
-  }
+  });
   o.work /= steps;
   return o;
 }

@@ -90,7 +90,7 @@ static inline rtb_real rtb_cell_row_solve(const rtb_law *L, rtb_real a, rtb_real
       fn = (flo > 0.0 && fhi > 4.0 * flo) ? sqrt(flo) * sqrt(fhi) : flo + 0.5 * (fhi - flo);
     fm = fn;
     int cap = max_evals - close - *evals; /* the smoothed inverse's evaluations */
-    v = sg * rtb_law_eval_f(L, sg * fm, sg * v, 0.0, D, &cap);
+    v = sg * rtb_law_eval_f(L, sg * fm, sg * v, 0.0, D, &cap, 0);
     *evals += cap;
     last_in_f = true;
   }

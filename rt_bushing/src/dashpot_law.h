@@ -83,6 +83,14 @@ static inline rtb_real rtb_law_dual_potential(rtb_real f, rtb_real v, rtb_real a
  * evaluated directly (cheaper; the slope keeps its exact sign_s' term). */
 #define RTB_SLAW_SHARP 40.0
 
+/* exp(x) rounds to +0 below ln(smallest subnormal / 2): -745.13 (double),
+ * -103.98 (float). */
+#ifdef RTB_SINGLE
+#define RTB_EXP_ZERO_BELOW -104.0f
+#else
+#define RTB_EXP_ZERO_BELOW -745.2
+#endif
+
 /* ln |v|_s, eq. (14), by the same operations as rtb_slaw_force. With
  * e = exp(-s|v|) in (exp(-40), 1] there: |v|_s = |v| + (2/s) log1p(e), and
  * only for s < ~1e-307 (2/s overflows) ln(s|v| + 2 log1p(e)) - ln s. */
@@ -94,44 +102,99 @@ static inline rtb_real rtb_slaw_log_abs(rtb_real v, rtb_real s) {
   return A <= RTB_REAL_MAX ? log(A) : log(sa + 2.0 * L) - log(s);
 }
 
-/* psi_s(v) and (if dfdv) psi_s'(v) = C0 |v|_s^alpha (sign_s' + alpha
- * sign_s^2 / |v|_s), sign_s' = 2 s e / (1 + e)^2. Both terms are >= 0, so
- * the slope is never negative; it is > 0 wherever psi_s is finite.
- * If curv (needs dfdv): psi_s''(|v|) / psi_s'(|v|), for the inverse's
- * stopping rule (no further transcendental). With S = sign_s, A = |v|_s (A' = S),
+/* Below s|v| = RTB_SLAW_SERIES the stage solver evaluates eq. (14) by its
+ * Taylor series in x = s|v| (rtb_slaw_eval), without a transcendental:
+ * with |v|_s = (2/s) ln(2 cosh(x/2)) and sign_s = tanh(x/2),
+ *   tanh(x/2)          = x/2 - x^3/24 + x^5/240 - 17 x^7/40320 + O(x^9),
+ *   ln(2 cosh(x/2))    = ln 2 + G,  G = x^2/8 - x^4/192 + x^6/2880 + O(x^8),
+ *   |v|_s^alpha        = P0 (1 + G/ln 2)^alpha,  P0 = (2 ln 2 / s)^alpha,
+ * (1 + w)^alpha = exp(alpha log1p(w)) by three terms of each series
+ * (w <= 1.8e-5 there); every dropped term is below 1e-19 of what it
+ * corrects. The chain's slow cells sit there (a quarter of the smoothed
+ * evaluations on BM_Extension's sine: session 47). */
+#ifdef RTB_SINGLE
+#define RTB_SLAW_SERIES 1e-2f
+#else
+#define RTB_SLAW_SERIES 1e-2
+#endif
+#define RTB_LN2 0.69314718055994530942
+
+/* P0 = (2 ln 2 / s)^alpha of the series, or 0 (no series) where 2/s
+ * overflows. */
+static inline rtb_real rtb_slaw_series_scale(rtb_real alpha, rtb_real s) {
+  if (!(s > 4.0 / RTB_REAL_MAX)) return 0.0;
+  const rtb_real P0 = exp(alpha * log(2.0 * RTB_LN2 / s));
+  return P0 <= RTB_REAL_MAX ? P0 : 0.0;
+}
+
+/* psi_s(v), *D = 1/psi_s'(v) (+inf where psi_s' underflows) and, if curv,
+ * psi_s''/psi_s' signed as at v (the inverse's stopping rule and the stage
+ * solver's Chebyshev step; no further transcendental). P0: the series'
+ * scale (rtb_slaw_series_scale), or 0 for no series.
+ * psi_s'(v) = C0 |v|_s^alpha (sign_s' + alpha sign_s^2 / |v|_s), sign_s' =
+ * 2 s e / (1 + e)^2: both terms are >= 0, so the slope is never negative;
+ * it is > 0 wherever psi_s is finite. With S = sign_s, A = |v|_s (A' = S),
  * S' = (s/2)(1 - S^2), S'' = -s S S' and P = A^alpha (P' = alpha P S / A):
  *   psi_s'' / (C0 P) = (alpha S / A)(S' + alpha S^2/A) + S''
  *                      + alpha (2 S S' / A - S^3 / A^2);
- * in the sharp regime (alpha - 1)/|v|, the terms in e dropped. */
-static inline rtb_real rtb_slaw_force_c(rtb_real v, rtb_real C0, rtb_real alpha, rtb_real s,
-                                        rtb_real *dfdv, rtb_real *curv) {
+ * in the sharp regime (alpha - 1)/v, the terms in e dropped. The stage
+ * solver needs D, not psi_s': four divisions in the transition regime
+ * instead of seven, two in the sharp one (session 47). */
+static inline rtb_real rtb_slaw_eval(rtb_real v, rtb_real C0, rtb_real alpha, rtb_real s,
+                                     rtb_real P0, rtb_real *D, rtb_real *curv) {
   const rtb_real a = fabs(v), sa = s * a;
   if (sa >= RTB_SLAW_SHARP) {
-    const rtb_real m = rtb_law_force(a, C0, alpha), e = exp(-sa);
-    if (dfdv) { /* = C0 |v|^alpha (sign_s' + alpha/|v|); e == 0 or |v| = inf: no 0 * inf */
-      const rtb_real t = e > 0.0 ? 2.0 * sa * e / ((1.0 + e) * (1.0 + e)) : 0.0;
-      *dfdv = a <= RTB_REAL_MAX ? m / a * (t + alpha) : 0.0;
-      if (curv) *curv = (alpha - 1.0) / a;
-    }
+    /* exp(-sa) is +0 past RTB_EXP_ZERO_BELOW: returned directly, without
+     * libm's underflow path (1% of a smoothed step, issue #11) */
+    const rtb_real m = rtb_law_force(a, C0, alpha), e = -sa < RTB_EXP_ZERO_BELOW ? 0.0 : exp(-sa);
+    /* psi_s' = C0 |v|^alpha (sign_s' + alpha/|v|); e == 0 or |v| = inf: no 0 * inf */
+    const rtb_real t = e > 0.0 ? 2.0 * sa * e / ((1.0 + e) * (1.0 + e)) : 0.0;
+    *D = a <= RTB_REAL_MAX ? a / (m * (t + alpha)) : INFINITY;
+    if (curv) *curv = (alpha - 1.0) / v;
     return v < 0.0 ? -m : m;
   }
-  const rtb_real em = expm1(-sa), e = 1.0 + em; /* e in (exp(-40), 1]: no underflow */
-  const rtb_real S = -em / (2.0 + em);          /* |sign_s(v)| = tanh(s|v|/2) */
-  const rtb_real L = log1p(e);
-  const rtb_real A = a + 2.0 * L / s;           /* |v|_s; inf only for s < ~1e-307 */
-  const rtb_real lnA = A <= RTB_REAL_MAX ? log(A) : log(sa + 2.0 * L) - log(s);
-  const rtb_real P = exp(alpha * lnA);          /* |v|_s^alpha */
-  if (dfdv) {
-    const rtb_real dS = 2.0 * s * e / ((1.0 + e) * (1.0 + e));
-    const rtb_real PA = A <= RTB_REAL_MAX ? P / A : exp((alpha - 1.0) * lnA); /* |v|_s^(alpha-1) */
-    *dfdv = C0 * (dS * P + alpha * S * S * PA);
-    if (curv) {
-      const rtb_real iA = 1.0 / A, g = dS + alpha * S * S * iA; /* psi_s' / (C0 P) */
-      *curv = (alpha * S * iA * g - s * S * dS + alpha * S * iA * (2.0 * dS - S * S * iA)) / g;
-    }
+  rtb_real S, A, P, dS, lnA = 0.0;
+  if (sa < RTB_SLAW_SERIES && P0 > 0.0) { /* the series above: no transcendental */
+    const rtb_real x2 = sa * sa;
+    S = 0.5 * sa * (1.0 - x2 / 12.0 * (1.0 - x2 / 10.0 * (1.0 - x2 * (17.0 / 168.0))));
+    const rtb_real w = x2 / 8.0 * (1.0 - x2 / 24.0 * (1.0 - x2 / 15.0)) / RTB_LN2;
+    const rtb_real z = alpha * (w * (1.0 - w * (0.5 - w / 3.0)));
+    A = 2.0 * RTB_LN2 * (1.0 + w) / s;
+    P = P0 * (1.0 + z * (1.0 + z * (0.5 + z / 6.0)));
+    dS = 0.5 * s * (1.0 - S * S);
+  } else {
+    const rtb_real em = expm1(-sa), e = 1.0 + em; /* e in (exp(-40), 1]: no underflow */
+    const rtb_real iE = 1.0 / (2.0 + em);         /* 1 / (1 + e) */
+    S = -em * iE;                                 /* |sign_s(v)| = tanh(s|v|/2) */
+    const rtb_real L = log1p(e);
+    A = a + 2.0 * L / s;                          /* |v|_s; inf only for s < ~1e-307 */
+    lnA = A <= RTB_REAL_MAX ? log(A) : log(sa + 2.0 * L) - log(s);
+    P = exp(alpha * lnA);                         /* |v|_s^alpha */
+    dS = 2.0 * s * e * iE * iE;
   }
-  const rtb_real m = C0 * S * P;
+  const bool finite_A = A <= RTB_REAL_MAX;
+  const rtb_real iA = finite_A ? 1.0 / A : 0.0;
+  const rtb_real PA = finite_A ? P * iA : exp((alpha - 1.0) * lnA); /* |v|_s^(alpha-1) */
+  const rtb_real CP = C0 * P;
+  *D = 1.0 / (C0 * (dS * P + alpha * S * S * PA));
+  if (curv) {
+    const rtb_real g = dS + alpha * S * S * iA; /* psi_s' / (C0 P) */
+    const rtb_real c = (alpha * S * iA * g - s * S * dS + alpha * S * iA * (2.0 * dS - S * S * iA));
+    *curv = (v < 0.0 ? -c : c) * CP * *D;        /* / g, as C0 P D = 1/g */
+  }
+  const rtb_real m = CP * S;
   return v < 0.0 ? -m : m;
+}
+
+/* psi_s(v) and (if dfdv) psi_s'(v), from rtb_slaw_eval (no series);
+ * curv (needs dfdv) as there, for |v|. */
+static inline rtb_real rtb_slaw_force_c(rtb_real v, rtb_real C0, rtb_real alpha, rtb_real s,
+                                        rtb_real *dfdv, rtb_real *curv) {
+  rtb_real D;
+  const rtb_real f = rtb_slaw_eval(v, C0, alpha, s, 0.0, &D, dfdv ? curv : 0);
+  if (dfdv) *dfdv = 1.0 / D;
+  if (dfdv && curv && v < 0.0) *curv = -*curv;
+  return f;
 }
 
 static inline rtb_real rtb_slaw_force(rtb_real v, rtb_real C0, rtb_real alpha, rtb_real s,
@@ -171,18 +234,22 @@ static inline rtb_real rtb_slaw_force(rtb_real v, rtb_real C0, rtb_real alpha, r
  * at the last evaluated point (capped at RTB_REAL_MAX), which differs from the
  * returned v by at most the final Newton correction (rounding level when
  * converged). When the cap ends the iteration the best bracketed iterate is
- * returned. */
-static inline rtb_real rtb_slaw_velocity_n(rtb_real f, rtb_real C0, rtb_real alpha, rtb_real s,
-                                         rtb_real guess, int max_evals, rtb_real ftol,
-                                         int *evals, rtb_real *dvdf) {
+ * returned. rtb_slaw_velocity_p also takes the series' scale P0 (0: none)
+ * and gives *curv (may be NULL), psi_s''/psi_s' at the last evaluated point,
+ * signed as at the returned v (the stage solver's Chebyshev step). */
+static inline rtb_real rtb_slaw_velocity_p(rtb_real f, rtb_real C0, rtb_real alpha, rtb_real s,
+                                         rtb_real P0, rtb_real guess, int max_evals, rtb_real ftol,
+                                         int *evals, rtb_real *dvdf, rtb_real *curv) {
   *evals = 1;
   if (dvdf) *dvdf = 0.0;
+  if (curv) *curv = 0.0; /* psi_s is odd: psi_s''(0) = 0 */
   if (f == 0.0) return 0.0;
   const rtb_real m = fabs(f);
   const rtb_real vu = rtb_law_velocity(m, C0, alpha);
   if (!(vu <= RTB_REAL_MAX)) return f > 0.0 ? INFINITY : -INFINITY;
   if (s * vu >= RTB_SLAW_SHARP) { /* psi_s(vu) == f to rounding */
     if (dvdf) *dvdf = rtb_law_dvdf(m, vu, alpha);
+    if (curv) *curv = f > 0.0 ? (alpha - 1.0) / vu : (1.0 - alpha) / vu; /* eq. (1)'s */
     return f > 0.0 ? vu : -vu;
   }
   rtb_real lo = vu - 2.0 * 0.69314718055994530942 / s;
@@ -193,13 +260,14 @@ static inline rtb_real rtb_slaw_velocity_n(rtb_real f, rtb_real C0, rtb_real alp
   rtb_real v = (g > lo && g < hi) ? g : (vu < lo ? lo : (vu > hi ? hi : vu));
   int it = 0;
   while (it < max_evals) {
-    rtb_real d, c;
-    const rtb_real r = rtb_slaw_force_c(v, C0, alpha, s, &d, &c) - m;
+    rtb_real D, c;
+    const rtb_real r = rtb_slaw_eval(v, C0, alpha, s, P0, &D, &c) - m;
     ++it;
-    if (dvdf) { const rtb_real D = 1.0 / d; *dvdf = D <= RTB_REAL_MAX ? D : RTB_REAL_MAX; }
+    if (dvdf) *dvdf = D <= RTB_REAL_MAX ? D : RTB_REAL_MAX;
+    if (curv) *curv = f > 0.0 ? c : -c;
     if (r == 0.0) break;
     if (r > 0.0) hi = v; else lo = v;
-    rtb_real vn = v - r / d;
+    rtb_real vn = v - r * D;
     /* Converged: the step or the force residual is at rounding level (the
      * inverse amplifies rounding by up to 1/alpha, so a step test alone
      * could idle until the bracket collapses), or what this Newton step
@@ -219,8 +287,8 @@ static inline rtb_real rtb_slaw_velocity_n(rtb_real f, rtb_real C0, rtb_real alp
         v = vn;
         const rtb_real moved = 1.0 + c * dv; /* psi_s'(vn) / psi_s'(v) to first order */
         if (dvdf && moved > 0.5 && moved < 2.0) {
-          const rtb_real D = 1.0 / (d * moved);
-          *dvdf = D <= RTB_REAL_MAX ? D : RTB_REAL_MAX;
+          const rtb_real Dm = D / moved;
+          *dvdf = Dm <= RTB_REAL_MAX ? Dm : RTB_REAL_MAX;
         }
       }
       break;
@@ -234,6 +302,12 @@ static inline rtb_real rtb_slaw_velocity_n(rtb_real f, rtb_real C0, rtb_real alp
   }
   *evals = it > 0 ? it : 1;
   return f > 0.0 ? v : -v;
+}
+
+static inline rtb_real rtb_slaw_velocity_n(rtb_real f, rtb_real C0, rtb_real alpha, rtb_real s,
+                                         rtb_real guess, int max_evals, rtb_real ftol,
+                                         int *evals, rtb_real *dvdf) {
+  return rtb_slaw_velocity_p(f, C0, alpha, s, 0.0, guess, max_evals, ftol, evals, dvdf, 0);
 }
 
 static inline rtb_real rtb_slaw_velocity(rtb_real f, rtb_real C0, rtb_real alpha, rtb_real s,
@@ -287,19 +361,13 @@ static inline rtb_real rtb_dashpot_dv_dalpha(rtb_real f, rtb_real v, rtb_real C0
  * matrix needs no further law call. Results equal the functions above to
  * rounding (phi uses the reciprocal of C0 instead of a division by it).
  */
-/* exp(x) rounds to +0 below ln(smallest subnormal / 2): -745.13 (double),
- * -103.98 (float). */
-#ifdef RTB_SINGLE
-#define RTB_EXP_ZERO_BELOW -104.0f
-#else
-#define RTB_EXP_ZERO_BELOW -745.2
-#endif
 
 typedef struct rtb_law {
   rtb_real C0, alpha, s;    /* s: eq. (14) smoothing, 0 = exact eq. (1) */
   rtb_real asym;            /* fric_asym: level C0 (1 +- asym) by the sign */
   rtb_real C0p, C0m;        /* the two levels, C0 (1 + asym) and C0 (1 - asym) */
   rtb_real inv_C0p, inv_C0m, inv_alpha;
+  rtb_real P0;              /* the smoothed law's series scale (rtb_slaw_series_scale) */
 } rtb_law;
 
 static inline void rtb_law_init(rtb_law *L, rtb_real C0, rtb_real alpha, rtb_real s,
@@ -313,14 +381,16 @@ static inline void rtb_law_init(rtb_law *L, rtb_real C0, rtb_real alpha, rtb_rea
   L->inv_C0p = 1.0 / L->C0p;
   L->inv_C0m = 1.0 / L->C0m;
   L->inv_alpha = 1.0 / alpha;
+  L->P0 = s > 0.0 ? rtb_slaw_series_scale(alpha, s) : 0.0;
 }
 
-/* f = psi(v) and *D = phi'(f) at the pair (0 at v = 0). One psi evaluation. */
-static inline rtb_real rtb_law_eval_v(const rtb_law *L, rtb_real v, rtb_real *D) {
+/* f = psi(v) and *D = phi'(f) at the pair (0 at v = 0). One psi evaluation.
+ * Smoothed law: *curv (may be NULL) psi_s''/psi_s' at v. */
+static inline rtb_real rtb_law_eval_v_c(const rtb_law *L, rtb_real v, rtb_real *D,
+                                        rtb_real *curv) {
   if (L->s > 0.0) {
-    rtb_real d;
-    const rtb_real f = rtb_slaw_force(v, v < 0.0 ? L->C0m : L->C0p, L->alpha, L->s, &d);
-    const rtb_real Dv = 1.0 / d;
+    rtb_real Dv;
+    const rtb_real f = rtb_slaw_eval(v, v < 0.0 ? L->C0m : L->C0p, L->alpha, L->s, L->P0, &Dv, curv);
     *D = Dv <= RTB_REAL_MAX ? Dv : RTB_REAL_MAX;
     return f;
   }
@@ -329,6 +399,10 @@ static inline rtb_real rtb_law_eval_v(const rtb_law *L, rtb_real v, rtb_real *D)
   const rtb_real m = (v < 0.0 ? L->C0m : L->C0p) * exp(L->alpha * log(a));  /* eq. (1) */
   *D = m > 0.0 ? a / (L->alpha * m) : 0.0;          /* phi' = v / (alpha f) */
   return v > 0.0 ? m : -m;
+}
+
+static inline rtb_real rtb_law_eval_v(const rtb_law *L, rtb_real v, rtb_real *D) {
+  return rtb_law_eval_v_c(L, v, D, 0);
 }
 
 /* v = phi(f) of eq. (1) (no smoothing) and *D = phi'(f). */
@@ -347,13 +421,14 @@ static inline rtb_real rtb_law_eval_pow_f(const rtb_law *L, rtb_real f, rtb_real
 
 /* v = phi(f) and *D = phi'(f). `guess` warm-starts the smoothed inverse,
  * ftol its force tolerance (rtb_slaw_velocity_n); *cap: in, the most psi_s
- * evaluations it may use (>= 1); out, the count used (1 for eq. (1)). */
+ * evaluations it may use (>= 1); out, the count used (1 for eq. (1)).
+ * Smoothed law: *curv (may be NULL) psi_s''/psi_s' at the pair. */
 static inline rtb_real rtb_law_eval_f(const rtb_law *L, rtb_real f, rtb_real guess,
-                                      rtb_real ftol, rtb_real *D, int *cap) {
+                                      rtb_real ftol, rtb_real *D, int *cap, rtb_real *curv) {
   if (L->s > 0.0) {
     const int max_evals = *cap < 1 ? 1 : (*cap < RTB_SLAW_INV_ITERS ? *cap : RTB_SLAW_INV_ITERS);
-    return rtb_slaw_velocity_n(f, f < 0.0 ? L->C0m : L->C0p, L->alpha, L->s, guess, max_evals,
-                               ftol, cap, D);
+    return rtb_slaw_velocity_p(f, f < 0.0 ? L->C0m : L->C0p, L->alpha, L->s, L->P0, guess,
+                               max_evals, ftol, cap, D, curv);
   }
   *cap = 1;
   return rtb_law_eval_pow_f(L, f, D);
@@ -368,16 +443,20 @@ static inline rtb_real rtb_law_eval_f(const rtb_law *L, rtb_real f, rtb_real gue
  * evaluation (`full` units). From v alone: a pair off the curve (an
  * unconverged last step) still gets the slope of its velocity. */
 static inline rtb_real rtb_law_dvdf_pair(const rtb_law *L, rtb_real f, rtb_real v, int full,
-                                         int *units) {
+                                         int *units, rtb_real *curv) {
   if (!(L->s > 0.0)) { *units = 0; return rtb_law_dvdf(f, v, L->alpha); }
   const rtb_real a = fabs(v);
   if (L->s * a >= RTB_SLAW_SHARP && a <= RTB_REAL_MAX) {
     *units = 1;
+    if (curv) *curv = (L->alpha - 1.0) / v; /* eq. (1)'s psi''/psi', signed */
     const rtb_real m = (v < 0.0 ? L->C0m : L->C0p) * exp(L->alpha * log(a)); /* eq. (1) */
     return m > 0.0 ? a / (L->alpha * m) : RTB_REAL_MAX;
   }
   *units = full;
-  return rtb_dashpot_dvdf(f, v, v < 0.0 ? L->C0m : L->C0p, L->alpha, L->s);
+  if (!curv) return rtb_dashpot_dvdf(f, v, v < 0.0 ? L->C0m : L->C0p, L->alpha, L->s);
+  rtb_real D;
+  rtb_law_eval_v_c(L, v, &D, curv);
+  return D;
 }
 
 #endif

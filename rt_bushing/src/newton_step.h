@@ -180,6 +180,21 @@ static inline void rtb_newton_hK_apply(int n, rtb_real hK0, rtb_real hKr, const 
   if (n > 1) out[n - 1] = 2.0 * hKr * u[n - 1] - hKr * u[n - 2];
 }
 
+/* Q = df + h K dv, the second-order term of H = f + h K v - r from the
+ * pairs' second-order moves df (steep DOFs) and dv (the others); returns
+ * max |Q|. */
+static inline rtb_real rtb_newton_second_order_sum(int n, rtb_real hK0, rtb_real hKr,
+                                                   const rtb_real *df, const rtb_real *dv,
+                                                   rtb_real *Q) {
+  rtb_newton_hK_apply(n, hK0, hKr, dv, Q);
+  rtb_real m = 0.0;
+  for (int k = 0; k < n; ++k) {
+    Q[k] += df[k];
+    m = fabs(Q[k]) > m ? fabs(Q[k]) : m;
+  }
+  return m;
+}
+
 /* Q = 1/2 H''[dl, dl], the residual's second-order term along the Newton
  * update dl (f-space), for the exact law eq. (1) only. Steep DOFs move v by
  * D dl and recompute f = psi(v), which gains 1/2 psi'' (D dl)^2 with
@@ -210,14 +225,31 @@ static inline rtb_real rtb_newton_second_order(int n, rtb_real hK0, rtb_real hKr
     df[k] = steep[k] ? cs * rel * dl[k] : 0.0;
     dv[k] = steep[k] ? 0.0 : cf * D[k] * rel * dl[k];
   }
-  rtb_newton_hK_apply(n, hK0, hKr, dv, Q);
-  rtb_real m = 0.0;
-  for (int k = 0; k < n; ++k) {
-    Q[k] += df[k];
-    m = fabs(Q[k]) > m ? fabs(Q[k]) : m;
-  }
   *move = mv;
-  return m;
+  return rtb_newton_second_order_sum(n, hK0, hKr, df, dv, Q);
+}
+
+/* The same term for any law given its curvature C = psi''/psi' at each pair
+ * (the eq. (14) smoothing, whose psi_s'' has no form in f and v alone): a
+ * steep DOF gains 1/2 psi'' (D dl)^2 = 1/2 C D dl^2 in f, the others
+ * 1/2 phi'' dl^2 = -1/2 C D^2 dl^2 in v (phi'' = -psi'' / psi'^3, psi' =
+ * 1/D). For eq. (1), C = (alpha - 1)/v gives rtb_newton_second_order's
+ * terms. No division. Returns max |Q|. */
+static inline rtb_real rtb_newton_second_order_curv(int n, rtb_real hK0, rtb_real hKr,
+                                                    const bool *steep, const rtb_real *D,
+                                                    const rtb_real *C, const rtb_real *dl,
+                                                    rtb_real *Q, rtb_real *slope_change) {
+  rtb_real df[RTB_MAX_CELLS], dv[RTB_MAX_CELLS];
+  rtb_real sc = 0.0;
+  for (int k = 0; k < n; ++k) {
+    const rtb_real cdv = fabs(C[k] * D[k] * dl[k]); /* |psi'(v + dv) / psi'(v) - 1| to first order */
+    sc = cdv > sc ? cdv : sc;
+    const rtb_real q = 0.5 * C[k] * D[k] * dl[k] * dl[k];
+    df[k] = steep[k] ? q : 0.0;
+    dv[k] = steep[k] ? 0.0 : -q * D[k];
+  }
+  *slope_change = sc;
+  return rtb_newton_second_order_sum(n, hK0, hKr, df, dv, Q);
 }
 
 /* The pair after an update dc taken without a law sweep (eq. (1) only): the

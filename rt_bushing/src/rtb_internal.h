@@ -24,6 +24,8 @@ typedef struct rtb_stage {
   rtb_real v[RTB_MAX_CELLS];     /* converged cell velocities [length/time] */
   rtb_real y[RTB_MAX_CELLS];     /* stage cell DOFs [length] */
   rtb_real D[RTB_MAX_CELLS];     /* phi'(f) at the returned pair [length/(force time)] */
+  rtb_real C[RTB_MAX_CELLS];     /* psi''/psi' there [1/(length/time)], if have_C */
+  int have_C;                    /* C set (eq. (14) smoothing only) */
   int iterations;
   int backtracks;              /* line-search halvings over all iterations */
   int converged;
@@ -33,7 +35,10 @@ typedef struct rtb_stage {
 /* Solve one stage with Newton's method (per-DOF variable switching and a line
  * search on the residual norm). (f0, v0), both or neither NULL: a start pair
  * on the dashpot curve (previous solution); D0 (may be NULL: computed from
- * the pair) its slopes phi'(f0); v_guess (may be NULL) the fallback start.
+ * the pair) its slopes phi'(f0); C0 (smoothed law; may be NULL) its
+ * curvatures psi''/psi', without which a given D0 leaves the first Newton
+ * step without its Chebyshev correction; v_guess (may be NULL) the fallback
+ * start.
  * *budget: law evaluations left in this step, decremented
  * (stage_newton.cpp). lu (not NULL; newton_step.h): on entry, if lu->n is
  * the stage's active cell count and the free start is taken, the
@@ -43,8 +48,9 @@ typedef struct rtb_stage {
  * RTB_NOT_CONVERGED or RTB_ERR_OVERFLOW. */
 struct rtb_newton_lu;
 rtb_status rtb_stage_solve(const rtb_params *p, const rtb_settings *set, const rtb_real *f0,
-                           const rtb_real *v0, const rtb_real *D0, const rtb_real *v_guess,
-                           rtb_stage *st, int *budget, struct rtb_newton_lu *lu);
+                           const rtb_real *v0, const rtb_real *D0, const rtb_real *C0,
+                           const rtb_real *v_guess, rtb_stage *st, int *budget,
+                           struct rtb_newton_lu *lu);
 
 /* Work units of one dashpot-law evaluation in the step budget
  * (RTB_STEP_WORK): 1 for eq. (1), RTB_SLAW_UNIT for the smoothed eq. (14)
@@ -69,11 +75,12 @@ rtb_status rtb_chain_advance(const rtb_params *p, const rtb_settings *set,
  * neither NULL) instead of the last step's end: another solution of the
  * first stage for a nearby xb_new, with its slopes D1 (may be NULL: then
  * computed from the pair, which costs a smoothed law an evaluation per
- * cell). f1/v1/D1 may alias st[0].f/st[0].v/st[0].D. */
+ * cell) and curvatures C1 (smoothed law; may be NULL). f1/v1/D1/C1 may
+ * alias st[0].f/st[0].v/st[0].D/st[0].C. */
 rtb_status rtb_chain_advance_from(const rtb_params *p, const rtb_settings *set,
                                   const rtb_state *s, rtb_real xb_new, rtb_real dt,
                                   const rtb_real *f1, const rtb_real *v1, const rtb_real *D1,
-                                  rtb_stage st[2], int *budget);
+                                  const rtb_real *C1, rtb_stage st[2], int *budget);
 
 /* Rate-independent STS step (section 3.1): exact backward-Euler return map of
  * the friction chain by a primal-dual active-set method. */

@@ -149,10 +149,12 @@ rtb_real mark_cells(const Chain &ch, int lo, int hi, const rtb_real *f, const rt
 
 /* Evaluate the law at v (steep DOFs) or f (the others) for all cells; D =
  * dv/df at the new pair, and the next iteration's choice of update variable
- * (steep: h K_kk D > 1). ftol: the smoothed inverse's force tolerance (0: to
- * rounding). Takes the evaluations from *budget; returns max |f|. */
+ * (steep: h K_kk D > 1). Smoothed law: C = psi_s''/psi_s' at the pairs (the
+ * Chebyshev step's curvature; no further transcendental). ftol: the smoothed
+ * inverse's force tolerance (0: to rounding). Takes the evaluations from
+ * *budget; returns max |f|. */
 rtb_real law_sweep(const Chain &ch, bool *steep, rtb_real *f, rtb_real *v, rtb_real *D,
-                   int *budget, rtb_real ftol = 0.0) {
+                   rtb_real *C, int *budget, rtb_real ftol = 0.0) {
   const int n = ch.n;
   if (!(ch.law.s > 0.0)) { /* eq. (1): one power per cell, all cells at once */
     rtb_law_sweep_lanes(&ch.law, n, steep, f, v, D);
@@ -160,13 +162,13 @@ rtb_real law_sweep(const Chain &ch, bool *steep, rtb_real *f, rtb_real *v, rtb_r
   } else {
     for (int k = 0; k < n; ++k) {
       if (steep[k]) {
-        f[k] = rtb_law_eval_v(&ch.law, v[k], &D[k]);
+        f[k] = rtb_law_eval_v_c(&ch.law, v[k], &D[k], &C[k]);
         *budget -= ch.unit;
       } else {
         /* v[k] holds the tangent prediction: the smoothed inverse's warm
          * start. Leave one evaluation for each cell still to come. */
         int cap = (*budget - ch.unit * (n - 1 - k)) / ch.unit;
-        v[k] = rtb_law_eval_f(&ch.law, f[k], v[k], ftol, &D[k], &cap);
+        v[k] = rtb_law_eval_f(&ch.law, f[k], v[k], ftol, &D[k], &cap, &C[k]);
         *budget -= ch.unit * cap;
       }
     }
@@ -174,12 +176,39 @@ rtb_real law_sweep(const Chain &ch, bool *steep, rtb_real *f, rtb_real *v, rtb_r
   return mark_cells(ch, 0, n, f, D, steep, 0.0);
 }
 
-/* Pair (f, v), slopes D, residual H and the update choice of one iterate. */
+/* Pair (f, v), slopes D, residual H and the update choice of one iterate;
+ * with the smoothed law, the curvatures C = psi_s''/psi_s' where known. */
 struct Iterate {
   rtb_real f[RTB_MAX_CELLS], v[RTB_MAX_CELLS], D[RTB_MAX_CELLS], H[RTB_MAX_CELLS];
+  rtb_real C[RTB_MAX_CELLS];
   bool steep[RTB_MAX_CELLS];
+  bool curv_ok;                  /* C holds every cell's curvature (smoothed law) */
   rtb_real fmax_abs, hnorm, h2;  /* max |f|, max |H|, |H|_2^2 */
 };
+
+/* A bound of the third-order part of what the linearised update dl leaves,
+ * for the eq. (14) law, from K = |psi_s'''/psi_s'| and C = |psi_s''/psi_s'|:
+ * K + 3 C^2 <= min(4 s^2, 256 / v^2) at every v (the law is a function of
+ * s v; measured over s|v| = 1e-6 .. 1e6, alpha = 0.001 .. 1: K <= 0.96 s^2
+ * and 57 / v^2, C^2 <= 0.95 s^2 and 48 / v^2), and along a move du = D dl
+ * of at most |v| / 2 at most four times that bound at v. A steep DOF's force
+ * is then off by at most B du^2 |dl| / 6, another's velocity (|phi'''| <=
+ * (K + 3 C^2) D^3) by B D du^2 |dl| / 6, which h K carries into H with its
+ * row sum. NaN: no bound. */
+rtb_real smoothed_third_order(const Chain &ch, const Iterate &x, const rtb_real *dl) {
+  const rtb_real s2 = 4.0 * ch.law.s * ch.law.s;
+  rtb_real fs = 0.0, vs = 0.0;
+  for (int k = 0; k < ch.n; ++k) {
+    const rtb_real du = x.D[k] * dl[k], v = x.v[k];
+    const rtb_real near = 1024.0 / (v * v); /* 4 x 256 / v^2, inf at v = 0 */
+    const rtb_real B = fabs(du) <= 0.5 * fabs(v) && near < s2 ? near : s2;
+    const rtb_real t = B * du * du * fabs(dl[k]) / 6.0;
+    if (x.steep[k]) fs = t > fs || t != t ? t : fs;
+    else vs = x.D[k] * t > vs || t != t ? x.D[k] * t : vs;
+  }
+  const rtb_real rows = ch.hK0 + ch.hKr > 4.0 * ch.hKr ? ch.hK0 + ch.hKr : 4.0 * ch.hKr;
+  return fs + rows * vs;
+}
 
 /* What the linearised update dl would leave of the residual, or +inf when
  * that cannot be told. Eq. (1): the second-order term Q (newton_step.h),
@@ -187,10 +216,15 @@ struct Iterate {
  * alpha / 10), and Q is kept for chebyshev_step (*have_Q); *cubic the order
  * of what Chebyshev's update would leave, |Q| move (1 + 1/alpha) (the third
  * order over the second is ~ move / alpha), to skip sweep_free_chebyshev
- * where it cannot succeed. Smoothed law: in the quadratic phase |H_next| ~
- * |H|^3 / |H_prev|^2 (|H_k+1| = c |H_k|^2, c from the last full step). */
+ * where it cannot succeed. Smoothed law: with the iterate's curvatures, Q
+ * plus a bound of the third-order term (smoothed_third_order); without
+ * them, in the quadratic phase after a Newton step, |H_next| ~ |H|^3 /
+ * |H_prev|^2 (|H_k+1| = c |H_k|^2; after Chebyshev's step, whose rate is
+ * cubic, that c would be too small: 12x the tolerance was left in
+ * SmoothedChebyshev.StagesMeetTheToleranceWithLessWork). */
 rtb_real linearised_residual(const Chain &ch, const Iterate &x, const rtb_real *dl,
-                             rtb_real prev_hnorm, rtb_real *Q, bool *have_Q, rtb_real *cubic) {
+                             rtb_real prev_hnorm, bool last_newton, rtb_real *Q, bool *have_Q,
+                             rtb_real *cubic) {
   *cubic = INFINITY;
   if (!(ch.law.s > 0.0)) {
     *have_Q = true;
@@ -201,23 +235,45 @@ rtb_real linearised_residual(const Chain &ch, const Iterate &x, const rtb_real *
     *cubic = q * move * (1.0 + ch.law.inv_alpha);
     return q;
   }
-  if (!(x.hnorm < 1e-3 * prev_hnorm)) return INFINITY;
+  if (x.curv_ok) {
+    rtb_real slope_change;
+    return rtb_newton_second_order_curv(ch.n, ch.hK0, ch.hKr, x.steep, x.D, x.C, dl, Q,
+                                        &slope_change) +
+           smoothed_third_order(ch, x, dl);
+  }
+  if (!last_newton || !(x.hnorm < 1e-3 * prev_hnorm)) return INFINITY;
   const rtb_real ratio = x.hnorm / prev_hnorm;
   return x.hnorm * ratio * ratio;
 }
 
-/* Chebyshev's step dc = dl - J^-1 Q, Q = 1/2 H''[dl, dl] (eq. (1) only;
- * cubic local convergence, one substitution with the kept LU and no law
- * evaluation): the iterate's curvature along dl is known in closed form.
- * Used only when the correction is at most half the step (the expansion
- * holds); returns false otherwise. Q: computed here unless have_Q. */
+/* The smoothed Chebyshev step is tried only while no cell's slope changes
+ * by more than this to first order along Newton's update (|C du|, du = D
+ * dl): beyond it the quadratic model is no better than the linear one. On
+ * BM_Extension's smoothed sine (units per step) and the smoothed half of
+ * 400 random configurations (unconverged steps of 120 600): no gate 214 /
+ * 439, 1.0: 216 / 264, 0.5: 222 / 267, 0.1: 250 / 261 (session 47, before
+ * the sweep-free estimate of smoothed_third_order). */
+#define RTB_CHEB_SLOPE_CHANGE 1.0
+
+/* Chebyshev's step dc = dl - J^-1 Q, Q = 1/2 H''[dl, dl] (cubic local
+ * convergence, one substitution with the kept LU and no law evaluation):
+ * the iterate's curvature along dl is known in closed form for eq. (1), and
+ * from the last sweep for the smoothed law (x.C; session 47: a smoothed step
+ * on BM_Extension's sine took ~6.6 sweeps without it). Used only when the
+ * correction is at most half the step (the expansion holds); returns false
+ * otherwise. Q: computed here unless have_Q. */
 bool chebyshev_step(const Chain &ch, const Iterate &x, const rtb_newton_lu &lu,
                     const rtb_real *dl, bool have_Q, rtb_real *Q, rtb_real *dc) {
-  if (ch.law.s > 0.0) return false;
   rtb_real move;
-  if (!have_Q)
+  if (ch.law.s > 0.0) {
+    rtb_real slope_change;
+    if (!x.curv_ok) return false;
+    rtb_newton_second_order_curv(ch.n, ch.hK0, ch.hKr, x.steep, x.D, x.C, dl, Q, &slope_change);
+    if (!(slope_change <= RTB_CHEB_SLOPE_CHANGE)) return false;
+  } else if (!have_Q) {
     rtb_newton_second_order(ch.n, ch.hK0, ch.hKr, ch.law.alpha, x.steep, x.f, x.v, x.D, dl, Q,
                             &move);
+  }
   rtb_newton_substitute(&lu, 1.0, Q, dc);
   rtb_real cn = 0.0, dn = 0.0;
   for (int k = 0; k < ch.n; ++k) {
@@ -267,6 +323,7 @@ bool gauss_seidel_trial(const Chain &ch, const Iterate &x, const rtb_real *r, It
                         int *budget) {
   const int n = ch.n;
   *budget -= ch.unit * rtb_cell_gauss_seidel(&ch.law, n, ch.hK0, ch.hKr, r, x.v, t->f, t->v, t->D);
+  t->curv_ok = false;
   t->fmax_abs = mark_cells(ch, 0, n, t->f, t->D, t->steep, 0.0);
   t->hnorm = residual(ch, t->f, t->v, r, t->H, &t->h2);
   return t->hnorm <= RTB_REAL_MAX;
@@ -280,7 +337,8 @@ void evaluated_start(const Chain &ch, const rtb_real *v_guess, const rtb_real *r
       x->v[k] = attempt == 0 ? v_guess[k] : 0.0;
       x->steep[k] = true;
     }
-    x->fmax_abs = law_sweep(ch, x->steep, x->f, x->v, x->D, budget);
+    x->fmax_abs = law_sweep(ch, x->steep, x->f, x->v, x->D, x->C, budget);
+    x->curv_ok = ch.law.s > 0.0; /* law_sweep fills C for the smoothed law only */
     x->hnorm = residual(ch, x->f, x->v, r, x->H, &x->h2);
     if (x->hnorm <= RTB_REAL_MAX) return;
   }
@@ -329,18 +387,28 @@ int active_cells(const Chain &ch, rtb_real tol, rtb_real rnorm, const rtb_real *
 
 /* The start of the Newton iteration on the active cells (ch.n): the free
  * pair (f0, v0) if given and finite, else the law at v_guess, else rest.
- * Returns whether the free pair was taken. */
+ * The free pair's slopes D0 and (smoothed law) curvatures C0 are taken
+ * where given, else computed from the pair. Returns whether the free pair
+ * was taken. */
 bool start_iterate(const Chain &ch, const rtb_real *f0, const rtb_real *v0, const rtb_real *D0,
-                   const rtb_real *v_guess, const rtb_real *r, Iterate *x, int *budget) {
+                   const rtb_real *C0, const rtb_real *v_guess, const rtb_real *r, Iterate *x,
+                   int *budget) {
   const int n = ch.n;
   bool free_start = f0 && v0;
   if (free_start) {
-    for (int k = 0; k < n; ++k) {
-      int units = 0;
-      x->f[k] = f0[k];
-      x->v[k] = v0[k];
-      x->D[k] = D0 ? D0[k] : rtb_law_dvdf_pair(&ch.law, f0[k], v0[k], ch.unit, &units);
-      *budget -= units;
+    const bool smoothed = ch.law.s > 0.0;
+    x->curv_ok = smoothed && (!D0 || C0);
+    for (int k = 0; k < n; ++k) x->f[k] = f0[k], x->v[k] = v0[k];
+    if (D0) {
+      for (int k = 0; k < n; ++k) x->D[k] = D0[k];
+      if (x->curv_ok) for (int k = 0; k < n; ++k) x->C[k] = C0[k];
+    } else {
+      for (int k = 0; k < n; ++k) {
+        int units = 0;
+        x->D[k] = rtb_law_dvdf_pair(&ch.law, f0[k], v0[k], ch.unit, &units,
+                                    smoothed ? &x->C[k] : nullptr);
+        *budget -= units;
+      }
     }
     x->fmax_abs = mark_cells(ch, 0, n, x->f, x->D, x->steep, 0.0);
     x->hnorm = residual(ch, x->f, x->v, r, x->H, &x->h2);
@@ -378,7 +446,8 @@ bool friction_start(const Chain &ch, const rtb_real *r, rtb_real done, const Ite
   *budget -= (solves < 0 ? -solves : solves) * ch.sweep;
   if (solves == 0) return false;
   for (int k = 0; k < n; ++k) t->steep[k] = act[k] != 0;
-  t->fmax_abs = law_sweep(ch, t->steep, t->f, t->v, t->D, budget);
+  t->fmax_abs = law_sweep(ch, t->steep, t->f, t->v, t->D, t->C, budget);
+  t->curv_ok = false; /* eq. (1) only */
   t->hnorm = residual(ch, t->f, t->v, r, t->H, &t->h2);
   return t->hnorm <= RTB_REAL_MAX && t->h2 < x.h2;
 }
@@ -409,6 +478,20 @@ bool friction_start(const Chain &ch, const rtb_real *r, rtb_real done, const Ite
  * sine it changes nothing (the warm-started inverse is already exact). */
 #define RTB_INVERSE_TOL 0.01
 
+/* Halvings of the first Newton step from the free start before the solve
+ * restarts from the law at the extrapolated velocities (session 47). From a
+ * pair on the curve Newton's direction descends at once; one that needs more
+ * halvings starts from a pair off the curve (the last step ran out of
+ * budget: f_n = b - K y_n then is not psi(v_n)), from which halving does not
+ * help: such steps spent their whole budget in 30 halvings, and so did every
+ * step after them (a near-friction smoothed chain after a 40 mm jump: 191 of
+ * 300 steps). BM_RandomConfigs' generator (90 000 steps per seed),
+ * unconverged steps, 30 -> 2 halvings (with the smoothed Chebyshev step):
+ * default budget 577 -> 335 (seeds 1-4: 3106 -> 1936), 640 units 8021 ->
+ * 5181, 512 units 10061 -> 7084; session 46's library: 393, 2756, 8581 and
+ * 10377. */
+#define RTB_FREE_START_BACKTRACKS 2
+
 /* Newton's iteration on the active cells from *x (bufs: *x and the trial
  * buffer), until converged or out of the stage's iterations (set->max_iter
  * over all its calls) or budget. Adds its iterations and backtracks to st,
@@ -428,6 +511,7 @@ rtb_real newton_iterate(const Chain &ch, const rtb_settings *set, const rtb_real
   int it = 0;
   rtb_real scale = rnorm;
   rtb_real prev_hnorm = 0.0; /* |H| before the last full (t = 1) step; 0: none yet */
+  bool last_newton = false;  /* ... and that step was Newton's, not Chebyshev's */
   for (;; ++it) {
     scale = x->fmax_abs > rnorm ? x->fmax_abs : rnorm;
     if (x->hnorm <= set->tol * scale || x->hnorm <= RTB_REAL_MIN) { st->converged = 1; break; }
@@ -448,7 +532,8 @@ rtb_real newton_iterate(const Chain &ch, const rtb_settings *set, const rtb_real
     bool have_Q = false;
     rtb_real cubic = INFINITY;
     const rtb_real left = prev_hnorm > 0.0
-                              ? linearised_residual(ch, *x, dl, prev_hnorm, Q, &have_Q, &cubic)
+                              ? linearised_residual(ch, *x, dl, prev_hnorm, last_newton, Q,
+                                                    &have_Q, &cubic)
                               : INFINITY;
     if (left <= 0.01 * set->tol * scale) {
       for (int k = 0; k < n; ++k) {
@@ -479,7 +564,10 @@ rtb_real newton_iterate(const Chain &ch, const rtb_settings *set, const rtb_real
      * from t = 1; if that blows up, the Gauss-Seidel repair. */
     rtb_real t = 1.0;
     bool accepted = false;
-    for (int bt = cheb ? -1 : 0; bt <= set->max_backtrack && *budget >= ch.sweep; ++bt) {
+    const int max_bt = it == 0 && free_start && RTB_FREE_START_BACKTRACKS < set->max_backtrack
+                           ? RTB_FREE_START_BACKTRACKS
+                           : set->max_backtrack;
+    for (int bt = cheb ? -1 : 0; bt <= max_bt && *budget >= ch.sweep; ++bt) {
       const rtb_real *d = bt < 0 ? dc : dl;
       t = bt <= 0 ? 1.0 : 0.5 * t;
       for (int k = 0; k < n; ++k) {
@@ -489,8 +577,9 @@ rtb_real newton_iterate(const Chain &ch, const rtb_settings *set, const rtb_real
         trial->f[k] = x->f[k] + t * d[k];
         trial->steep[k] = x->steep[k];
       }
-      trial->fmax_abs = law_sweep(ch, trial->steep, trial->f, trial->v, trial->D, budget,
-                                  RTB_INVERSE_TOL * set->tol * scale);
+      trial->fmax_abs = law_sweep(ch, trial->steep, trial->f, trial->v, trial->D, trial->C,
+                                  budget, RTB_INVERSE_TOL * set->tol * scale);
+      trial->curv_ok = ch.law.s > 0.0;
       trial->hnorm = residual(ch, trial->f, trial->v, r, trial->H, &trial->h2);
       const bool descent = trial->hnorm <= RTB_REAL_MAX && !(trial->h2 > (1.0 - 2e-4 * t) * x->h2);
       if (!descent) {
@@ -505,6 +594,7 @@ rtb_real newton_iterate(const Chain &ch, const rtb_settings *set, const rtb_real
       }
       /* linearised_residual's reference: |H| before a full step only */
       prev_hnorm = descent && t == 1.0 ? x->hnorm : 0.0;
+      last_newton = bt >= 0;
       Iterate *tmp = x;
       x = trial;
       trial = tmp;
@@ -556,8 +646,8 @@ inline rtb_real locked_force(const Chain &ch, const rtb_real *r, const Iterate &
 
 extern "C" rtb_status rtb_stage_solve(const rtb_params *p, const rtb_settings *set,
                                       const rtb_real *f0, const rtb_real *v0, const rtb_real *D0,
-                                      const rtb_real *v_guess, rtb_stage *st, int *budget,
-                                      rtb_newton_lu *lu) {
+                                      const rtb_real *C0, const rtb_real *v_guess, rtb_stage *st,
+                                      int *budget, rtb_newton_lu *lu) {
   Chain ch;
   ch.n = p->cells;
   ch.Kpa = p->Kpa;
@@ -589,7 +679,8 @@ extern "C" rtb_status rtb_stage_solve(const rtb_params *p, const rtb_settings *s
   st->converged = 1;
   x->hnorm = 0.0;
   rtb_real scale = rnorm;
-  bool free_start = ch.n > 0 && start_iterate(ch, f0, v0, D0, v_guess, r, x, budget);
+  x->curv_ok = false;
+  bool free_start = ch.n > 0 && start_iterate(ch, f0, v0, D0, C0, v_guess, r, x, budget);
   const rtb_real done = set->tol * (x->fmax_abs > rnorm ? x->fmax_abs : rnorm);
   if (ch.n > 0 && friction_start(ch, r, done, *x, &bufs[1], budget)) {
     x = &bufs[1];
@@ -614,8 +705,10 @@ extern "C" rtb_status rtb_stage_solve(const rtb_params *p, const rtb_settings *s
     st->f[k] = active ? x->f[k] : locked_force(ch, r, *x, k);
     st->v[k] = active ? x->v[k] : 0.0;
     st->D[k] = active ? x->D[k] : 0.0;
+    if (x->curv_ok) st->C[k] = x->C[k]; /* smoothed law: no cell is locked */
     st->y[k] = st->c[k] + ch.h * st->v[k];
     if (!isfinite(st->y[k])) return RTB_ERR_OVERFLOW;
   }
+  st->have_C = x->curv_ok;
   return st->converged ? RTB_OK : RTB_NOT_CONVERGED;
 }

@@ -30,13 +30,14 @@ static rtb_status worse(rtb_status a, rtb_status b) {
 extern "C" rtb_status rtb_chain_advance(const rtb_params *p, const rtb_settings *set,
                                         const rtb_state *s, rtb_real xb_new, rtb_real dt,
                                         rtb_stage st[2], int *budget) {
-  return rtb_chain_advance_from(p, set, s, xb_new, dt, NULL, NULL, NULL, st, budget);
+  return rtb_chain_advance_from(p, set, s, xb_new, dt, NULL, NULL, NULL, NULL, st, budget);
 }
 
 extern "C" rtb_status rtb_chain_advance_from(const rtb_params *p, const rtb_settings *set,
                                              const rtb_state *s, rtb_real xb_new, rtb_real dt,
                                              const rtb_real *f1, const rtb_real *v1,
-                                             const rtb_real *D1, rtb_stage st[2], int *budget) {
+                                             const rtb_real *D1, const rtb_real *C1,
+                                             rtb_stage st[2], int *budget) {
   const int n = p->cells;
   /* Free start of the first stage: the last step's end, (f_n, v_n), with
    * f_n = b(t_n) - K y_n from eq. (2) (no law evaluation). Fallback start:
@@ -50,7 +51,7 @@ extern "C" rtb_status rtb_chain_advance_from(const rtb_params *p, const rtb_sett
   const rtb_real w = s->dt_prev > 0.0 ? fmin(lead / s->dt_prev, 1.0) : 0.0;
   for (int k = 0; k < n; ++k) guess[k] = s->v[k] + w * (s->v[k] - s->v_prev[k]);
   const rtb_real *fs = f1 && v1 ? f1 : f_end, *vs = f1 && v1 ? v1 : s->v;
-  const rtb_real *Ds = f1 && v1 ? D1 : NULL;
+  const rtb_real *Ds = f1 && v1 ? D1 : NULL, *Cs = f1 && v1 ? C1 : NULL;
   /* Both SDIRK2 stages have the step h = g dt: the second's first Newton
    * step takes the first stage's last factorization (its matrix differs by
    * the slopes' change over that last update, ~1e-4 relative at 1 kHz). */
@@ -60,13 +61,13 @@ extern "C" rtb_status rtb_chain_advance_from(const rtb_params *p, const rtb_sett
     st[0].h = dt;
     st[0].b1 = p->Kpa * xb_new;
     memcpy(st[0].c, s->y, sizeof(rtb_real) * n);
-    return rtb_stage_solve(p, set, fs, vs, Ds, guess, &st[0], budget, &lu);
+    return rtb_stage_solve(p, set, fs, vs, Ds, Cs, guess, &st[0], budget, &lu);
   }
   const rtb_real g = RTB_SDIRK_GAMMA;
   st[0].h = g * dt;
   st[0].b1 = p->Kpa * (s->xb + g * (xb_new - s->xb));
   memcpy(st[0].c, s->y, sizeof(rtb_real) * n);
-  rtb_status a = rtb_stage_solve(p, set, fs, vs, Ds, guess, &st[0], budget, &lu);
+  rtb_status a = rtb_stage_solve(p, set, fs, vs, Ds, Cs, guess, &st[0], budget, &lu);
   if (a < 0) return a;
   if (!st[0].converged) lu.n = 0;
   st[1].h = g * dt;
@@ -79,7 +80,8 @@ extern "C" rtb_status rtb_chain_advance_from(const rtb_params *p, const rtb_sett
   /* Free start of the second stage: the first stage's solution, with the
    * slopes of its last sweep (no law evaluation; a smoothed one costs
    * RTB_SLAW_UNIT). */
-  return worse(a, rtb_stage_solve(p, set, st[0].f, st[0].v, st[0].D, guess, &st[1], budget, &lu));
+  return worse(a, rtb_stage_solve(p, set, st[0].f, st[0].v, st[0].D,
+                                  st[0].have_C ? st[0].C : NULL, guess, &st[1], budget, &lu));
 }
 
 /* Tangent of one converged stage: (I + h D K) dy = dc + h D e1 db1. */
@@ -151,7 +153,8 @@ void respond(const rtb_state *s, const rtb_params *p, const rtb_settings *set,
     const bool slopes = hint && p->smoothing > 0.0;
     r->status = rtb_chain_advance_from(p, set, s, xb, dt, hint ? r->st[0].f : NULL,
                                        hint ? r->st[0].v : NULL, slopes ? r->st[0].D : NULL,
-                                       r->st, budget);
+                                       slopes && r->st[0].have_C ? r->st[0].C : NULL, r->st,
+                                       budget);
     const int ns = rtb_integrator_stages(p);
     memcpy(r->y, r->st[ns - 1].y, sizeof(rtb_real) * n);
     r->iterations = r->st[0].iterations + (ns == 2 ? r->st[1].iterations : 0);
