@@ -174,16 +174,24 @@ bool slow_branch_restart(const CandidateOutcome &co, const Context &cx, ExtModel
 // 697). A significant spectrum that fails the held-out gain is refitted
 // with its branches a half decade earlier and later (not below 2 sample
 // intervals, where the fastest is a dashpot, judge), the lower fit misfit
-// kept. The starts: 0, 1 or 2 models.
-std::vector<ExtModel> moved_spectrum_starts(const CandidateOutcome &co, const Context &cx) {
-  std::vector<ExtModel> starts;
+// kept. The starts: 0, 1 or 2 models, each with what it moved.
+struct MovedStart {
+  ExtModel model;
+  const char *moved;
+};
+std::vector<MovedStart> moved_spectrum_starts(const CandidateOutcome &co, const Context &cx) {
+  std::vector<MovedStart> starts;
   const rtb_params &p = co.fit.model.p;
   if (co.cand.name != "relaxation_spectrum" || !(p.spec_tau_min > 0.0)) return starts;
   const double half_decade = std::sqrt(10.0);
-  for (double tau : {p.spec_tau_min / half_decade, p.spec_tau_min * half_decade}) {
+  const double taus[2] = {p.spec_tau_min / half_decade, p.spec_tau_min * half_decade};
+  const char *const moved[2] = {"its branches a half decade earlier",
+                                "its branches a half decade later"};
+  for (int i = 0; i < 2; ++i) {
+    const double tau = taus[i];
     if (tau < 2.0 * cx.sc.dt || tau > cx.sc.memory) continue;
-    ExtModel m = co.fit.model;
-    set_spectrum_range(m.p, cx.sc, tau);
+    MovedStart m{co.fit.model, moved[i]};
+    set_spectrum_range(m.model.p, cx.sc, tau);
     starts.push_back(m);
   }
   return starts;
@@ -403,13 +411,10 @@ void refit_from_other_basin(CandidateOutcome &co, const Current &cur, const Cont
   } else if (co.round > 0 && co.amplitude_z < opt.min_z) {
     starts.push_back({sts_core_start(co.fit.model, cx), "the STS start"});
   }
-  if (fails_gain && slow_branch_restart(co, cx, &start))
-    starts.push_back({start, "the middle of the resolved times"});
-  if (fails_gain)
-    for (const ExtModel &m : moved_spectrum_starts(co, cx))
-      starts.push_back({m, m.p.spec_tau_min < co.fit.model.p.spec_tau_min
-                               ? "its branches a half decade earlier"
-                               : "its branches a half decade later"});
+  if (fails_gain) {
+    if (slow_branch_restart(co, cx, &start)) starts.push_back({start, "the middle of the resolved times"});
+    for (const MovedStart &m : moved_spectrum_starts(co, cx)) starts.push_back({m.model, m.moved});
+  }
   if (starts.empty()) return;
   std::vector<Candidate> with = cur.causes;
   with.push_back(co.cand);
