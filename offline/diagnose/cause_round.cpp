@@ -147,22 +147,41 @@ void middle_branch_start(CandidateOutcome &co, const std::vector<Candidate> &wit
   if (again.J < co.fit.J) co.fit = again;
 }
 
+// A refit's start and where it comes from (for the log).
+struct Restart {
+  ExtModel model;
+  const char *from;
+};
+
 // A Maxwell branch fitted in the slow half of the times the records resolve
 // (above sqrt(5 dt x duration), the geometric middle) is mostly a spring
 // there, and the core may have taken the branch's relaxation in its stead
 // (refgen maxwell+offset_s24, after the offset: K0 = 0, alpha 0.69 and a
 // chain 12 times too stiff beside a branch at 3.76 s, 1.44% fit and no
 // held-out gain; restarted at the middle time with the fitted stiffness,
-// the generator's 0.078 s and K0, 1.03% fit). The start for that restart:
-// the fitted model with the middle time; false when the branch is faster.
+// the generator's 0.078 s and K0, 1.03% fit). A fast branch has its basin
+// below the middle, out of that start's reach (blindgen maxwell_s41, 2 kHz
+// records of 4 s: the screen's 1.2 s and the middle's 0.1 s both end at
+// 0.69 s with a chain 14 times too soft, 4.02% fit and 7.98% held out,
+// named `relaxation_spectrum` in its stead; from 0.016 s the generator's
+// 6.2 ms and size, 2.34% fit at a 2.31% floor, 3.93% held out), so the
+// branch also restarts from the middle of the fast half. The starts: the
+// fitted model with those times; none when the branch is fast already.
 // Unlike middle_branch_start (a branch past the records, before judging,
 // from the screen's start), it runs only when the judged branch fails.
-bool slow_branch_restart(const CandidateOutcome &co, const Context &cx, ExtModel *start) {
+std::vector<Restart> slow_branch_restarts(const CandidateOutcome &co, const Context &cx) {
+  std::vector<Restart> starts;
   const double tau_mid = middle_resolved_time(cx.sc);
-  if (co.cand.name != "maxwell" || !(co.fit.model.p.maxwell_tau > tau_mid)) return false;
-  *start = co.fit.model;
-  start->p.maxwell_tau = tau_mid;
-  return true;
+  if (co.cand.name != "maxwell" || !(co.fit.model.p.maxwell_tau > tau_mid)) return starts;
+  const double taus[2] = {tau_mid, std::sqrt(5.0 * cx.sc.dt * tau_mid)};
+  const char *const from[2] = {"the middle of the resolved times",
+                               "the middle of the fast half of the resolved times"};
+  for (int i = 0; i < 2; ++i) {
+    Restart r{co.fit.model, from[i]};
+    r.model.p.maxwell_tau = taus[i];
+    starts.push_back(r);
+  }
+  return starts;
 }
 
 // The screen places a spectrum's fastest branch with the core held at the
@@ -174,25 +193,20 @@ bool slow_branch_restart(const CandidateOutcome &co, const Context &cx, ExtModel
 // 697). A significant spectrum that fails the held-out gain is refitted
 // with its branches a half decade earlier and later (not below 2 sample
 // intervals, where the fastest is a dashpot, judge), the lower fit misfit
-// kept. The starts: 0, 1 or 2 models, each with what it moved.
-struct MovedStart {
-  ExtModel model;
-  const char *moved;
-};
-std::vector<MovedStart> moved_spectrum_starts(const CandidateOutcome &co, const Context &cx) {
-  std::vector<MovedStart> starts;
+// kept. The starts: 0, 1 or 2 models.
+std::vector<Restart> moved_spectrum_starts(const CandidateOutcome &co, const Context &cx) {
+  std::vector<Restart> starts;
   const rtb_params &p = co.fit.model.p;
   if (co.cand.name != "relaxation_spectrum" || !(p.spec_tau_min > 0.0)) return starts;
   const double half_decade = std::sqrt(10.0);
   const double taus[2] = {p.spec_tau_min / half_decade, p.spec_tau_min * half_decade};
-  const char *const moved[2] = {"its branches a half decade earlier",
-                                "its branches a half decade later"};
+  const char *const from[2] = {"its branches a half decade earlier",
+                               "its branches a half decade later"};
   for (int i = 0; i < 2; ++i) {
-    const double tau = taus[i];
-    if (tau < 2.0 * cx.sc.dt || tau > cx.sc.memory) continue;
-    MovedStart m{co.fit.model, moved[i]};
-    set_spectrum_range(m.model.p, cx.sc, tau);
-    starts.push_back(m);
+    if (taus[i] < 2.0 * cx.sc.dt || taus[i] > cx.sc.memory) continue;
+    Restart r{co.fit.model, from[i]};
+    set_spectrum_range(r.model.p, cx.sc, taus[i]);
+    starts.push_back(r);
   }
   return starts;
 }
@@ -383,7 +397,8 @@ bool earlier_round_start(const CandidateOutcome &co, const Current &cur,
 //   the generator's 0.179 s, 1.57% held out at a floor of 1.54%);
 // - a significant Maxwell branch that fails the held-out gain with its time
 //   in the slow half of what the records resolve also restarts from the
-//   middle of that range (slow_branch_restart);
+//   middle of that range and from the middle of its fast half
+//   (slow_branch_restarts);
 // - a significant spectrum that fails the held-out gain also restarts with
 //   its branches a half decade earlier and later (moved_spectrum_starts);
 // - a later word whose own size is insignificant (the core does its job)
@@ -399,11 +414,7 @@ void refit_from_other_basin(CandidateOutcome &co, const Current &cur, const Cont
                             const std::vector<CandidateOutcome> &earlier, double min_gain) {
   const DiagnoseOptions &opt = cx.opt;
   if (!co.joint || co.eligible || co.dbic < opt.min_dbic) return;
-  struct Start {
-    ExtModel model;
-    const char *from;
-  };
-  std::vector<Start> starts;
+  std::vector<Restart> starts;
   ExtModel start;
   const bool fails_gain = co.amplitude_z >= opt.min_z && co.gain < min_gain;
   if (co.lead && co.amplitude_z >= opt.min_z) {
@@ -412,8 +423,8 @@ void refit_from_other_basin(CandidateOutcome &co, const Current &cur, const Cont
     starts.push_back({sts_core_start(co.fit.model, cx), "the STS start"});
   }
   if (fails_gain) {
-    if (slow_branch_restart(co, cx, &start)) starts.push_back({start, "the middle of the resolved times"});
-    for (const MovedStart &m : moved_spectrum_starts(co, cx)) starts.push_back({m.model, m.moved});
+    for (const Restart &r : slow_branch_restarts(co, cx)) starts.push_back(r);
+    for (const Restart &r : moved_spectrum_starts(co, cx)) starts.push_back(r);
   }
   if (starts.empty()) return;
   std::vector<Candidate> with = cur.causes;
@@ -421,7 +432,7 @@ void refit_from_other_basin(CandidateOutcome &co, const Current &cur, const Cont
   const ExtFitSpec spec = combined_spec(with, cx.sc);
   ExtFitResult best;
   best.J = INFINITY;
-  for (const Start &s : starts) {
+  for (const Restart &s : starts) {
     ExtFitResult again;
     try {
       again = fit_extended(cx.fit, s.model, spec, opt.misfit);

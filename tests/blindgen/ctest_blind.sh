@@ -48,6 +48,10 @@
 #   maxwell:35                 a Maxwell branch that a 0.1% kink imitated
 #                              by taking K0 to -7578 (`asymmetry`, a wrong
 #                              word, before a kink held K0 >= -|k_asym|).
+#   maxwell:41                 a 6.1 ms branch at 2 kHz whose fit and the
+#                              slow restart end at 0.69 s with a soft chain
+#                              (`relaxation_spectrum`, a wrong word, before
+#                              session 47's restart from the fast half).
 # Exit 77 (ctest: skipped) without numpy and scipy (python3-numpy,
 # python3-scipy; `make deps` installs them).
 set -u
