@@ -252,7 +252,7 @@ static inline rtb_real rtb_slaw_velocity_p(rtb_real f, rtb_real C0, rtb_real alp
     if (curv) *curv = f > 0.0 ? (alpha - 1.0) / vu : (1.0 - alpha) / vu; /* eq. (1)'s */
     return f > 0.0 ? vu : -vu;
   }
-  rtb_real lo = vu - 2.0 * 0.69314718055994530942 / s;
+  rtb_real lo = vu - 2.0 * RTB_LN2 / s;
   if (!(lo > 0.0)) lo = 0.0;
   rtb_real hi = 4.0 * (vu + 2.0 / s);
   if (!(hi <= RTB_REAL_MAX)) hi = RTB_REAL_MAX;

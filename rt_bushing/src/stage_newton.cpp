@@ -378,7 +378,7 @@ int active_cells(const Chain &ch, rtb_real tol, rtb_real rnorm, const rtb_real *
   const rtb_real x = ch.law.alpha * ((rtb_real)e + 2.0 * m - 2.0);
   int fx = (int)x;
   fx -= (rtb_real)fx > x;
-  const rtb_real fl = ldexp(level, fx) * (1.0 + (x - (rtb_real)fx) * 0.69314718055994530942);
+  const rtb_real fl = ldexp(level, fx) * (1.0 + (x - (rtb_real)fx) * RTB_LN2);
   *f_lock = fl <= RTB_REAL_MAX ? fl : RTB_REAL_MAX;
   int k = n;
   while (k > 0 && fabs(r[k - 1]) <= *f_lock) --k;

@@ -52,6 +52,14 @@
 #                              slow restart end at 0.69 s with a soft chain
 #                              (`relaxation_spectrum`, a wrong word, before
 #                              session 47's restart from the fast half).
+#   maxwell,offset:41          after the offset, a 6.1 ms branch screened
+#                              out below a spectrum spread over 0.9 ms..4 s
+#                              (`relaxation_spectrum`, a wrong word, before
+#                              session 48's branch fitted from the spectrum).
+#   maxwell,offset:43          a 34 ms branch and a spectrum both paying,
+#                              the branch lower on the fit records, the
+#                              spectrum 1% lower held out (`relaxation_spectrum`
+#                              before session 48's one-branch rule).
 # Exit 77 (ctest: skipped) without numpy and scipy (python3-numpy,
 # python3-scipy; `make deps` installs them).
 set -u
