@@ -60,6 +60,10 @@
 #                              the branch lower on the fit records, the
 #                              spectrum 1% lower held out (`relaxation_spectrum`
 #                              before session 48's one-branch rule).
+#   maxwell:44                 a 5.9 ms branch at 500 Hz that the plain
+#                              chain took with near-linear dashpots (alpha
+#                              0.88): `unexplained` before session 48's
+#                              restart of the STS core with the branch fast.
 # Exit 77 (ctest: skipped) without numpy and scipy (python3-numpy,
 # python3-scipy; `make deps` installs them).
 set -u
