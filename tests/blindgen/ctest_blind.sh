@@ -2,7 +2,8 @@
 # ctest_blind.sh RTB OUTDIR CASES -- blind-generator cases through `rtb
 # diagnose`: every case named right, no wrong word. CASES is run_blind.sh's
 # --cases list; tests/CMakeLists.txt splits these into a fast group (make
-# test: delay,asymmetry:14) and three long ones (make test-long):
+# test: delay,asymmetry:14 and viscous:3) and four long ones (make
+# test-long):
 #   none:1                     plain data;
 #   mullins:1, softening:2     cases whose verdicts its effect definitions
 #                              changed (a Mullins loss on the whole material;
@@ -64,6 +65,16 @@
 #                              chain took with near-linear dashpots (alpha
 #                              0.88): `unexplained` before session 48's
 #                              restart of the STS core with the branch fast.
+#   viscous:3                  a dashpot beside a near-friction chain whose
+#                              plain fit disconnected it (Kpa 1.6e-7): a
+#                              lead of the force, `delay`, before session
+#                              49's friction start for a chainless baseline.
+#   viscous,cubic_stiffness:46 after the cubic, a chain of near-linear
+#                              dashpots behind a rigid Kpa: the dashpot
+#                              fitted from there split the damping with it
+#                              and lost to a spectrum (`relaxation_spectrum`,
+#                              a wrong word, before session 49's STS restart
+#                              of `viscous`).
 # Exit 77 (ctest: skipped) without numpy and scipy (python3-numpy,
 # python3-scipy; `make deps` installs them).
 set -u
