@@ -2,8 +2,8 @@
 # ctest_blind.sh RTB OUTDIR CASES -- blind-generator cases through `rtb
 # diagnose`: every case named right, no wrong word. CASES is run_blind.sh's
 # --cases list; tests/CMakeLists.txt splits these into a fast group (make
-# test: delay,asymmetry:14 and viscous:3) and four long ones (make
-# test-long):
+# test: delay,asymmetry:14, viscous:3 and softening:35) and four long ones
+# (make test-long):
 #   none:1                     plain data;
 #   mullins:1, softening:2     cases whose verdicts its effect definitions
 #                              changed (a Mullins loss on the whole material;
@@ -75,6 +75,10 @@
 #                              and lost to a spectrum (`relaxation_spectrum`,
 #                              a wrong word, before session 49's STS restart
 #                              of `viscous`).
+#   softening:35               a tanh spring whose fit switched the chain
+#                              off (Kr 0), beside a degressive cubic that
+#                              kept it (the cubic, before session 49's
+#                              refit from the rival's core).
 # Exit 77 (ctest: skipped) without numpy and scipy (python3-numpy,
 # python3-scipy; `make deps` installs them).
 set -u
