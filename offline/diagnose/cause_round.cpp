@@ -123,6 +123,36 @@ bool chain_collapsed(const rtb_params &p) {
 // sample intervals to their duration [s].
 double middle_resolved_time(const DataScales &s) { return std::sqrt(5.0 * s.dt * s.duration); }
 
+// Fits the words `with` from `start`. A restart that throws (a non-finite
+// state, a singular system) is not an error of the diagnosis: what it would
+// have replaced stands, so the caller is told false.
+static bool fit_from(const ExtModel &start, const std::vector<Candidate> &with,
+                     const Context &cx, ExtFitResult *f) {
+  try {
+    *f = fit_extended(cx.fit, start, combined_spec(with, cx.sc), cx.opt.misfit);
+  } catch (const std::exception &) {
+    return false;
+  }
+  return true;
+}
+
+// Refits co's word (the last of `with`) from `start` and keeps the fit when
+// its misfit is lower; `from` names the start in the log. Every restart of
+// a word's joint fit goes through here, so that each keeps the lower misfit
+// the same way.
+static bool refit_if_lower(CandidateOutcome &co, const ExtModel &start,
+                           const std::vector<Candidate> &with, const Context &cx,
+                           const char *from) {
+  ExtFitResult again;
+  if (!fit_from(start, with, cx, &again)) return false;
+  if (!cx.opt.quiet)
+    std::fprintf(stderr, "diagnose: %s from %s: J %.6g (was %.6g)\n", co.cand.name.c_str(), from,
+                 again.J, co.fit.J);
+  if (!(again.J < co.fit.J)) return false;
+  co.fit = again;
+  return true;
+}
+
 // A Maxwell branch's time has a basin per time scale the records excite,
 // and the screen chooses its start by a linear prediction at the baseline,
 // which has absorbed the branch in its own way (refgen maxwell_s16: K0 = 0
@@ -148,7 +178,8 @@ void middle_branch_start(CandidateOutcome &co, const std::vector<Candidate> &wit
   // 0.14 s with k = 0, J 7090; from the screen's 163 N/mm it reaches the
   // generator's 0.072 s).
   if (co.screen.value > 0.0) mid.p.maxwell_k = co.screen.value;
-  const ExtFitResult again = fit_extended(cx.fit, mid, combined_spec(with, cx.sc), cx.opt.misfit);
+  ExtFitResult again;
+  if (!fit_from(mid, with, cx, &again)) return;
   if (!cx.opt.quiet)
     std::fprintf(stderr, "diagnose: maxwell from tau %.4g s: tau %.4g s, J %.6g; from %.4g s: tau %.4g s, J %.6g (%d iterations)\n",
                  co.screen.start.p.maxwell_tau, co.fit.model.p.maxwell_tau, co.fit.J,
@@ -264,17 +295,9 @@ static bool core_imitated_word(const Candidate &c) {
 }
 static void sts_core_restart(CandidateOutcome &co, const std::vector<Candidate> &with,
                                  const Context &cx) {
-  if (!core_imitated_word(co.cand)) return;
-  try {
-    const ExtFitResult again = fit_extended(cx.fit, sts_core_start(co.fit.model, cx),
-                                            combined_spec(with, cx.sc), cx.opt.misfit);
-    if (!cx.opt.quiet)
-      std::fprintf(stderr, "diagnose: %s from the STS start of its chain's records: J %.6g "
-                   "(%.6g from the current model)\n", co.cand.name.c_str(), again.J, co.fit.J);
-    if (again.J < co.fit.J) co.fit = again;
-  } catch (const std::exception &) {
-    // the first fit stands
-  }
+  if (core_imitated_word(co.cand))
+    refit_if_lower(co, sts_core_start(co.fit.model, cx), with, cx,
+                   "the STS start of its chain's records");
 }
 
 // Stage 4: joint fits of the best-screened candidates (in parallel).
@@ -321,16 +344,9 @@ void joint_fits(std::vector<CandidateOutcome> &out, const Current &cur, const Co
       middle_branch_start(co, with, cx);
       with.back() = co.cand;  // the definition kept above
       sts_core_restart(co, with, cx);
-      if (chain_collapsed(co.fit.model.p)) {
-        try {
-          const ExtFitResult again =
-              fit_extended(cx.fit, sts_core_start(co.fit.model, cx), combined_spec(with, cx.sc),
-                           cx.opt.misfit);
-          if (again.J < co.fit.J) co.fit = again;
-        } catch (const std::exception &) {
-          // the restart failed: the collapsed fit stands
-        }
-      }
+      if (chain_collapsed(co.fit.model.p))
+        refit_if_lower(co, sts_core_start(co.fit.model, cx), with, cx,
+                       "the STS start (its chain collapsed)");
       co.joint = std::isfinite(co.fit.J);
       if (!co.joint) co.why = "joint fit failed: non-finite misfit";
     } catch (const std::exception &e) {
@@ -475,24 +491,10 @@ void refit_from_other_basin(CandidateOutcome &co, const Current &cur, const Cont
   if (starts.empty()) return;
   std::vector<Candidate> with = cur.causes;
   with.push_back(co.cand);
-  const ExtFitSpec spec = combined_spec(with, cx.sc);
-  ExtFitResult best;
-  best.J = INFINITY;
-  for (const Restart &s : starts) {
-    ExtFitResult again;
-    try {
-      again = fit_extended(cx.fit, s.model, spec, opt.misfit);
-    } catch (const std::exception &) {
-      continue;  // this start failed: the others, or the first fit, stand
-    }
-    if (!opt.quiet)
-      std::fprintf(stderr, "diagnose: %s from %s: J %.6g (from the current model: %.6g)\n",
-                   co.cand.name.c_str(), s.from, again.J, co.fit.J);
-    if (again.J < best.J) best = again;
-  }
-  if (!(best.J < co.fit.J)) return;
   const CandidateOutcome paying = co;
-  co.fit = best;
+  bool lower = false;
+  for (const Restart &s : starts) lower = refit_if_lower(co, s.model, with, cx, s.from) || lower;
+  if (!lower) return;
   judge_anew(co, cur, cx, min_gain);
   if (paying_branch && !co.eligible) co = paying;  // a better fit that does not pay is not taken
 }
@@ -522,18 +524,8 @@ void refit_from_rival_core(std::vector<CandidateOutcome> &out, const Current &cu
     admit_K0(start.p);
     std::vector<Candidate> with = cur.causes;
     with.push_back(co.cand);
-    ExtFitResult again;
-    try {
-      again = fit_extended(cx.fit, start, combined_spec(with, cx.sc), cx.opt.misfit);
-    } catch (const std::exception &) {
-      continue;  // the collapsed fit stands
-    }
-    if (!cx.opt.quiet)
-      std::fprintf(stderr, "diagnose: %s from the core of %s: J %.6g (collapsed: %.6g)\n",
-                   co.cand.name.c_str(), best->cand.name.c_str(), again.J, co.fit.J);
-    if (!(again.J < co.fit.J)) continue;
-    co.fit = again;
-    judge_anew(co, cur, cx, min_gain);
+    const std::string from = "the core of " + best->cand.name;
+    if (refit_if_lower(co, start, with, cx, from.c_str())) judge_anew(co, cur, cx, min_gain);
   }
 }
 
@@ -567,12 +559,8 @@ void fit_branch_rival(std::vector<CandidateOutcome> &out, const Current &cur, co
   start.p.maxwell_tau = std::max(spectrum_log_mean_time(p), 2.0 * cx.sc.dt);
   std::vector<Candidate> with = cur.causes;
   with.push_back(branch->cand);
-  try {
-    rival.fit = fit_extended(cx.fit, start, combined_spec(with, cx.sc), cx.opt.misfit);
-  } catch (const std::exception &) {
-    return;  // the round's outcome stands
-  }
-  if (!std::isfinite(rival.fit.J)) return;
+  rival.fit.J = INFINITY;  // any finite fit is kept; else the round's outcome stands
+  if (!refit_if_lower(rival, start, with, cx, "the spectrum's log-mean time")) return;
   rival.joint = true;
   judge_anew(rival, cur, cx, min_gain);
   if (!cx.opt.quiet)
