@@ -22,7 +22,7 @@ using namespace rtbtest;
 
 namespace {
 
-constexpr double kFreq = 10.0, kAmp = 1.0, kDuration = 2.0 / kFreq;
+constexpr double kSineFreq = 10.0, kSineAmp = 1.0, kSineDuration = 2.0 / kSineFreq;
 constexpr double kDtRef = 1e-6;
 const std::vector<double> kDts = {1e-5, 2e-5, 1e-4, 2e-4, 1e-3, 2e-3, 1e-2};
 
@@ -37,7 +37,7 @@ rtb_params model(double alpha, int integrator) {
 double rel_error(const Trace &run, double dt, const Trace &ref) {
   const long ratio = std::lround(dt / kDtRef);
   const long n = static_cast<long>(run.F.size()) - 1;
-  const long first = n - std::lround(1.0 / (kFreq * dt));
+  const long first = n - std::lround(1.0 / (kSineFreq * dt));
   double e = 0.0, m = 0.0;
   for (long i = first; i <= n; ++i) {
     const double Fr = ref.F[static_cast<std::size_t>(i * ratio)];
@@ -68,23 +68,23 @@ struct Table {
 Table measure(double alpha) {
   Table t;
   t.alpha = alpha;
-  const Sine in{kAmp, kFreq};
+  const Sine in{kSineAmp, kSineFreq};
   const rtb_params pref = model(alpha, RTB_INTEGRATOR_SDIRK2);
   // The reference's Newton solves converged far below the runs' (which take
   // the real-time default, what a host gets): tol 1e-12.
   rtb_settings tight;
   rtb_settings_default(&tight);
   tight.tol = 1e-12;
-  const Trace ref = simulate(pref, in, kDtRef, steps_for(kDuration, kDtRef), 1, &tight);
-  const Trace ref2 = simulate(pref, in, 2 * kDtRef, steps_for(kDuration, 2 * kDtRef), 1, &tight);
+  const Trace ref = simulate(pref, in, kDtRef, steps_for(kSineDuration, kDtRef), 1, &tight);
+  const Trace ref2 = simulate(pref, in, 2 * kDtRef, steps_for(kSineDuration, 2 * kDtRef), 1, &tight);
   EXPECT_TRUE(ref.ok() && ref2.ok());
   EXPECT_EQ(ref.not_converged, 0);
   t.ref_err = rel_error(ref2, 2 * kDtRef, ref) / 3.0;
   for (double dt : kDts) {
     Row r{dt, {0, 0}, {0, 0}, {false, false}};
     for (int integ : {RTB_INTEGRATOR_SDIRK2, RTB_INTEGRATOR_BE}) {
-      const Trace run = simulate(model(alpha, integ), in, dt, steps_for(kDuration, dt));
-      r.ok[integ] = run.ok() && run.steps == steps_for(kDuration, dt);
+      const Trace run = simulate(model(alpha, integ), in, dt, steps_for(kSineDuration, dt));
+      r.ok[integ] = run.ok() && run.steps == steps_for(kSineDuration, dt);
       r.nc[integ] = run.not_converged;
       r.err[integ] = r.ok[integ] ? rel_error(run, dt, ref) : INFINITY;
     }
@@ -134,7 +134,7 @@ void print(const Table &t) {
 // observed order is within 0.1 of 2 (SDIRK2) and 1 (BE) -- measured 1.95 to
 // 2.04 and 0.94 to 1.00 -- and the 1 ms error within 1.5x of its measured
 // value `err_1ms` (so a lost half-order or a doubled error constant fails).
-void check(const Table &t, double err_1ms) {
+void check_table(const Table &t, double err_1ms) {
   // The reference is converged far below the smallest measured error.
   EXPECT_LT(t.ref_err, 0.05 * t.err(1e-5, RTB_INTEGRATOR_SDIRK2));
   for (const Row &r : t.rows)
@@ -163,19 +163,19 @@ void check(const Table &t, double err_1ms) {
 TEST(AccuracySine, Alpha020OrdersAndErrors) {
   const Table t = measure(0.2);
   print(t);
-  check(t, 9.5e-5);
+  check_table(t, 9.5e-5);
 }
 
 TEST(AccuracySine, Alpha005OrdersAndErrors) {
   const Table t = measure(0.05);
   print(t);
-  check(t, 2.05e-4);
+  check_table(t, 2.05e-4);
 }
 
 TEST(AccuracySine, Alpha050OrdersAndErrors) {
   const Table t = measure(0.5);
   print(t);
-  check(t, 5.3e-5);
+  check_table(t, 5.3e-5);
 }
 
 // dt = 1e-2 s is 10 steps per cycle of the 10 Hz sine: the error may be large
@@ -186,16 +186,16 @@ TEST(AccuracySine, Alpha050OrdersAndErrors) {
 // cycle's peak has not grown relative to the second cycle's.
 TEST(AccuracyLargeStep, StableAndFiniteAtTenMilliseconds) {
   const double dt = 1e-2;
-  const int spc = static_cast<int>(std::lround(1.0 / (kFreq * dt)));
+  const int spc = static_cast<int>(std::lround(1.0 / (kSineFreq * dt)));
   for (double alpha : {0.05, 0.2, 0.5}) {
-    const Trace conv = simulate(model(alpha, RTB_INTEGRATOR_SDIRK2), Sine{kAmp, kFreq}, 1e-5,
-                                steps_for(kDuration, 1e-5));
+    const Trace conv = simulate(model(alpha, RTB_INTEGRATOR_SDIRK2), Sine{kSineAmp, kSineFreq}, 1e-5,
+                                steps_for(kSineDuration, 1e-5));
     ASSERT_TRUE(conv.ok());
     const double peak = max_abs(conv, last_cycle(conv, static_cast<std::size_t>(
-                                                           std::lround(1.0 / (kFreq * 1e-5)))));
+                                                           std::lround(1.0 / (kSineFreq * 1e-5)))));
     for (int integ : {RTB_INTEGRATOR_SDIRK2, RTB_INTEGRATOR_BE}) {
       SCOPED_TRACE(testing::Message() << "alpha " << alpha << " integrator " << integ);
-      const Trace tr = simulate(model(alpha, integ), Sine{kAmp, kFreq}, dt, 50L * spc);
+      const Trace tr = simulate(model(alpha, integ), Sine{kSineAmp, kSineFreq}, dt, 50L * spc);
       EXPECT_TRUE(tr.ok()) << rtb_status_message(tr.worst);
       EXPECT_EQ(tr.steps, 50L * spc);
       double all = 0.0;

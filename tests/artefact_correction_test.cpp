@@ -13,7 +13,7 @@
 namespace rtb {
 namespace {
 
-Record sine_record(double dt, double seconds) {
+Record offset_sine_record(double dt, double seconds) {
   Record r;
   r.path = "sine";
   for (double t = 0.0; t <= seconds + 1e-12; t += dt) {
@@ -28,7 +28,7 @@ TEST(ArtefactCorrection, UndoesTheDelayAndOffsetOfTheExtendedModel) {
   ExtModel m;
   rtb_params_default(&m.p, RTB_MODEL_RT);
   const double dt = 1e-3, delay = 7.5e-3, offset = -3.25;
-  Record rec = sine_record(dt, 1.0);
+  Record rec = offset_sine_record(dt, 1.0);
   Eigen::VectorXd element, measured;
   const ExtFitSpec spec;
   predict_extended(m, rec, SimOptions(), spec, element, nullptr);
@@ -55,7 +55,7 @@ TEST(ArtefactCorrection, UndoesTheDelayAndOffsetOfTheExtendedModel) {
 }
 
 TEST(ArtefactCorrection, WithoutArtefactsTheRecordIsUnchanged) {
-  Record rec = sine_record(1e-3, 0.5);
+  Record rec = offset_sine_record(1e-3, 0.5);
   for (size_t j = 0; j < rec.F.size(); ++j) rec.F[j] = 10.0 * rec.x[j] + 1.0;
   ExtModel m;
   const std::vector<Record> same = artefact_corrected({rec}, m);
@@ -88,7 +88,7 @@ TEST(ChainRecords, TakeOffTheElasticExtensionsBeyondTheirTangentAtRest) {
   EXPECT_DOUBLE_EQ(elastic_tangent_at_rest(with.p), 527.0 / 0.72);
   EXPECT_EQ(elastic_tangent_at_rest(without.p), 0.0);
 
-  Record rec = sine_record(1e-3, 2.0);
+  Record rec = offset_sine_record(1e-3, 2.0);
   Eigen::VectorXd Fw, Fo;
   const ExtFitSpec spec;
   predict_extended(with, rec, SimOptions(), spec, Fw, nullptr);
@@ -117,7 +117,7 @@ TEST(ChainRecords, TakeOffTheElasticExtensionsBeyondTheirTangentAtRest) {
 }
 
 TEST(ChainRecords, WithoutElasticExtensionsAreTheArtefactCorrectedRecords) {
-  Record rec = sine_record(1e-3, 0.5);
+  Record rec = offset_sine_record(1e-3, 0.5);
   for (size_t j = 0; j < rec.F.size(); ++j) rec.F[j] = 10.0 * rec.x[j] + 1.0;
   ExtModel m;
   m.offset = 1.0;

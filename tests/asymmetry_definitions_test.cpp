@@ -33,7 +33,7 @@ Record record(const char *name, double hz, double amp, bool triangle) {
 
 using rtb_test::paper_model;
 
-std::vector<Record> measured_through(const ExtModel &truth) {
+std::vector<Record> asymmetry_records(const ExtModel &truth) {
   std::vector<Record> recs = {record("triangle", 0.5, 1.2, true), record("sine", 3.0, 0.7, false)};
   rtb_test::measure_through(truth, recs);
   return recs;
@@ -92,7 +92,7 @@ TEST(AsymmetryDefinitions, TheRecordsChooseTheirDefinition) {
   // Quadratic truth: tangent K0 + 2 k2 x, +-25% of the static stiffness at 1.2 mm.
   ExtModel truth = paper_model();
   truth.p.k2 = 120.0;
-  const std::vector<Record> recs = measured_through(truth);
+  const std::vector<Record> recs = asymmetry_records(truth);
   ExtModel from_kink = paper_model();
   from_kink.p.k_asym = 100.0;
   ExtModel from_quad = paper_model();
@@ -104,7 +104,7 @@ TEST(AsymmetryDefinitions, TheRecordsChooseTheirDefinition) {
   // Kink truth: the other way round.
   truth = paper_model();
   truth.p.k_asym = 150.0;
-  const std::vector<Record> recs2 = measured_through(truth);
+  const std::vector<Record> recs2 = asymmetry_records(truth);
   const ExtFitResult c = fit_word(kink, from_kink, recs2), d = fit_word(quad, from_quad, recs2);
   EXPECT_NEAR(c.model.p.k_asym, 150.0, 1e-3);
   EXPECT_GT(d.error, 100.0 * c.error + 1e-3);
@@ -123,7 +123,7 @@ TEST(AsymmetryDefinitions, AKinkPastK0AloneIsFound) {
   truth.p.k_asym = -0.5 * (K0 + 0.6 * chain);
   ASSERT_EQ(rtb_params_validate(&truth.p), RTB_OK);
   ASSERT_GT(-truth.p.k_asym, truth.p.K0) << "past K0 alone";
-  const std::vector<Record> recs = measured_through(truth);
+  const std::vector<Record> recs = asymmetry_records(truth);
   ExtModel from_kink = paper_model();
   from_kink.p.k_asym = -0.5 * K0;
   const ExtFitResult a = fit_word(asymmetry_word(), from_kink, recs);

@@ -11,13 +11,11 @@
 
 #include "cell_row_solve.h"
 #include "rt_bushing/rt_bushing.h"
+#include "random_configs.h"
 
 namespace {
 
-double log_uniform(std::mt19937 &g, double lo, double hi) {
-  std::uniform_real_distribution<double> u(std::log(lo), std::log(hi));
-  return std::exp(u(g));
-}
+using rtb_test::log_uniform;
 
 // Over the whole admissible range of the law (alpha down to RTB_ALPHA_MIN,
 // with and without the eq. (14) smoothing and the friction asymmetry) and of

@@ -22,30 +22,17 @@
 #include "offline/io/params_json.h"
 #include "offline/model/misfit_norms.h"
 #include "offline/rtb_offline.h"
+#include "text_file.h"
 
 namespace fs = std::filesystem;
 
 namespace {
 
+using rtb_test::read_text;
+using rtb_test::shell_quote;
+using rtb_test::write_text;
+
 using rtb_test::kRtb;
-
-std::string shell_quote(const std::string &s) {
-  std::string out = "'";
-  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
-}
-
-std::string read_text(const std::string &path) {
-  std::ifstream f(path, std::ios::binary);
-  std::stringstream ss;
-  ss << f.rdbuf();
-  return ss.str();
-}
-
-void write_text(const std::string &path, const std::string &text) {
-  std::ofstream f(path, std::ios::binary);
-  f << text;
-}
 
 struct CmdResult {
   int code = -1;

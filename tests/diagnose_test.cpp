@@ -35,7 +35,7 @@ const std::vector<std::string> kLongEffects = {"cubic_stiffness", "asymmetry", "
 // 4 s records (8 s until session 9): the same verdicts in a third of the
 // time, which keeps `make test` well under 15 minutes. Longer records are
 // diagnosed by BM_Diagnose (10 s) and the refgen acceptance runs (8 s).
-constexpr double kDuration = 4.0;
+constexpr double kRecordDuration = 4.0;
 constexpr unsigned kSeed = 5;
 
 // The true model's own held-out error: the noise floor of that scenario.
@@ -54,7 +54,7 @@ class DiagnoseHidden : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(DiagnoseHidden, NamesTheHiddenEffect) {
   const std::string effect = GetParam();
-  const Scenario sc = hidden_effect_scenario(effect, kSeed, 0.005, kDuration);
+  const Scenario sc = hidden_effect_scenario(effect, kSeed, 0.005, kRecordDuration);
   const DiagnoseResult R = diagnose(sc.fit, sc.holdout, DiagnoseOptions());
   std::printf("[diag] %-16s -> %-16s %s (%.1f s)\n", effect.c_str(), R.cause.c_str(),
               R.verdict.c_str(), R.wall_seconds);

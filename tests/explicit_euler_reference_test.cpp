@@ -21,20 +21,20 @@
 
 #include "bench/reference_explicit_euler.h"
 #include "rt_bushing/rt_bushing.h"
+#include "test_numbers.h"
 
 namespace {
 
-constexpr double kTwoPi = 6.283185307179586476925;
-constexpr double kDt = 1e-5, kFreq = 10.0, kAmp = 1.0;
+constexpr double kEeDt = 1e-5, kEeFreq = 10.0, kEeAmp = 1.0;
 constexpr int kSteps = 10000;  // one cycle
 
-double input(int i) { return kAmp * std::sin(kTwoPi * kFreq * i * kDt); }
+double ee_input(int i) { return kEeAmp * std::sin(kTwoPi * kEeFreq * i * kEeDt); }
 
 std::vector<double> explicit_euler(const rtb_params &p, int substeps, bool *stable) {
   rtb_ref::ExplicitEuler ee;
   ee.init(p);
   std::vector<double> F(kSteps + 1, 0.0);
-  for (int i = 1; i <= kSteps; ++i) F[i] = ee.step(input(i), kDt, substeps);
+  for (int i = 1; i <= kSteps; ++i) F[i] = ee.step(ee_input(i), kEeDt, substeps);
   *stable = ee.finite;
   return F;
 }
@@ -46,7 +46,7 @@ TEST(ExplicitEulerReference, Sdirk2AgreesWithAConvergedIndependentIntegrator) {
   rtb_state s;
   ASSERT_EQ(rtb_state_init(&s, &p, 0.0), RTB_OK);
   std::vector<double> lib(kSteps + 1, 0.0);
-  for (int i = 1; i <= kSteps; ++i) ASSERT_EQ(rtb_step(&s, &p, nullptr, input(i), kDt, &lib[i]), RTB_OK);
+  for (int i = 1; i <= kSteps; ++i) ASSERT_EQ(rtb_step(&s, &p, nullptr, ee_input(i), kEeDt, &lib[i]), RTB_OK);
 
   bool stable1 = false, stable2 = false;
   const std::vector<double> e1 = explicit_euler(p, 10, &stable1);

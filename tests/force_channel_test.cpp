@@ -13,7 +13,7 @@
 namespace rtb {
 namespace {
 
-Record sine_record(double dt, double hz, double seconds) {
+Record channel_sine_record(double dt, double hz, double seconds) {
   Record r;
   r.path = "sine";
   for (double t = 0.0; t <= seconds + 1e-12; t += dt) {
@@ -29,7 +29,7 @@ using rtb_test::predicted;
 
 TEST(ForceChannel, TheLowPassIsTheContinuousFirstOrderFilter) {
   const double dt = 1e-4, tau = 5e-3;
-  const Record rec = sine_record(dt, 5.0, 1.0);
+  const Record rec = channel_sine_record(dt, 5.0, 1.0);
   const Eigen::VectorXd F = predicted(paper_model(), rec);
   ExtModel m = paper_model();
   m.delay = tau;
@@ -90,7 +90,7 @@ void expect_jacobian(const ExtModel &m, const Record &rec, const ExtFitSpec &spe
 // A 3 Hz record, the delay 4.3 ms (between samples: the pure lag's
 // interpolation is smooth in delay there), Kpa, C0, alpha and delay free.
 void expect_channel_jacobian(bool lowpass, bool lead = false) {
-  const Record rec = sine_record(1e-3, 3.0, 1.0);
+  const Record rec = channel_sine_record(1e-3, 3.0, 1.0);
   ExtModel m = paper_model();
   m.delay = 4.3e-3;
   m.delay_lowpass = lowpass;
@@ -111,7 +111,7 @@ TEST(ForceChannel, LeadSensitivitiesMatchCentralDifferences) { expect_channel_ja
 // A lead is the lag mirrored: F_lead(t) = F(t + d), so shifting the
 // prediction by the lag's 2 d lands on the lag's prediction.
 TEST(ForceChannel, ALeadIsTheLagMirrored) {
-  const Record rec = sine_record(1e-3, 3.0, 1.0);
+  const Record rec = channel_sine_record(1e-3, 3.0, 1.0);
   ExtModel lag = paper_model(), lead = paper_model();
   lag.delay = lead.delay = 4e-3;
   lead.delay_lead = true;
@@ -130,7 +130,7 @@ TEST(ForceChannel, AVanishingLowPassIsFiniteAndTransparent) {
   // A fit can drive the time constant towards 0 (log-parametrized): the
   // force and every sensitivity must stay finite (a NaN reached Eigen's
   // SVD in the covariance and crashed refgen delay+asymmetry seed 7).
-  const Record rec = sine_record(1e-3, 3.0, 0.5);
+  const Record rec = channel_sine_record(1e-3, 3.0, 0.5);
   ExtModel m = paper_model();
   m.delay = 1e-300;
   m.delay_lowpass = true;

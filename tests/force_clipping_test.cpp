@@ -19,7 +19,7 @@ namespace {
 
 // 2 s of a 2 Hz sine of amplitude 10 at 1 kHz, with white noise, then
 // optionally clipped at +-clip and quantized to steps of q.
-Record sine(double noise, double clip, double q, unsigned seed = 3) {
+Record clipped_sine(double noise, double clip, double q, unsigned seed = 3) {
   std::mt19937 g(seed);
   std::normal_distribution<double> n01(0.0, 1.0);
   Record r;
@@ -37,7 +37,7 @@ Record sine(double noise, double clip, double q, unsigned seed = 3) {
 }
 
 TEST(ForceClipping, SaturatedChannelIsFoundAndLeavesTheMisfit) {
-  std::vector<Record> recs = {sine(0.05, 8.0, 0.0)};
+  std::vector<Record> recs = {clipped_sine(0.05, 8.0, 0.0)};
   const std::vector<ClippedRecord> c = mask_force_clipping(recs);
   ASSERT_EQ(c.size(), 1u);
   EXPECT_TRUE(c[0].top);
@@ -57,7 +57,7 @@ TEST(ForceClipping, SaturatedChannelIsFoundAndLeavesTheMisfit) {
 }
 
 TEST(ForceClipping, OneSidedClippingIsOneSided) {
-  Record r = sine(0.05, 0.0, 0.0);
+  Record r = clipped_sine(0.05, 0.0, 0.0);
   for (double &F : r.F) F = std::fmin(F, 9.0);
   std::vector<Record> recs = {r};
   const std::vector<ClippedRecord> c = mask_force_clipping(recs);
@@ -70,12 +70,12 @@ TEST(ForceClipping, NoisyOrQuantizedUnclippedRecordsAreLeftAlone) {
   // Noise only; noise-free but quantized to 1% and 0.1% of the amplitude
   // (a smooth peak holds its top code for a while, as long as the next one);
   // quantized with noise.
-  std::vector<Record> recs = {sine(0.05, 0.0, 0.0), sine(0.0, 0.0, 0.1), sine(0.0, 0.0, 0.01),
-                              sine(0.05, 0.0, 0.01)};
+  std::vector<Record> recs = {clipped_sine(0.05, 0.0, 0.0), clipped_sine(0.0, 0.0, 0.1), clipped_sine(0.0, 0.0, 0.01),
+                              clipped_sine(0.05, 0.0, 0.01)};
   EXPECT_TRUE(mask_force_clipping(recs).empty());
   for (const Record &r : recs) EXPECT_TRUE(r.masked.empty());
   // The same records clipped are found, quantized or not.
-  std::vector<Record> clipped = {sine(0.0, 9.0, 0.1), sine(0.05, 9.0, 0.01)};
+  std::vector<Record> clipped = {clipped_sine(0.0, 9.0, 0.1), clipped_sine(0.05, 9.0, 0.01)};
   EXPECT_EQ(mask_force_clipping(clipped).size(), 2u);
 }
 

@@ -20,7 +20,7 @@ namespace {
 
 // 4 s of a sine of amplitude 10 at 1 kHz with white noise of std `noise`
 // (Laplace-distributed when `laplace`).
-Record sine(double hz, double noise, bool laplace = false, unsigned seed = 5) {
+Record spiky_sine(double hz, double noise, bool laplace = false, unsigned seed = 5) {
   std::mt19937 g(seed);
   std::normal_distribution<double> n01(0.0, 1.0);
   std::exponential_distribution<double> ex(1.0);
@@ -37,7 +37,7 @@ Record sine(double hz, double noise, bool laplace = false, unsigned seed = 5) {
 }
 
 TEST(ForceSpikes, IsolatedSpikesAreFoundAndLeaveTheMisfit) {
-  Record r = sine(2.0, 0.05);
+  Record r = spiky_sine(2.0, 0.05);
   std::vector<size_t> at;
   for (size_t k = 100; k < r.F.size() - 100; k += 397) {  // 10 spikes of +-0.6 .. 1.5
     const double s = (at.size() % 2 ? -1.0 : 1.0) * (0.6 + 0.1 * (double)at.size());
@@ -61,17 +61,17 @@ TEST(ForceSpikes, NoiseJumpsAndCoarseSinesAreLeftAlone) {
   // Gaussian and Laplace noise at 0.5% of the amplitude; a 60 Hz sine at
   // 1 kHz (17 samples per period); a force that steps by 3 at one sample
   // three times (a genuine jump leaves +1/2, -1/2, not -1/2, 1, -1/2).
-  Record step = sine(2.0, 0.05);
+  Record step = spiky_sine(2.0, 0.05);
   for (size_t k = 0; k < step.F.size(); ++k) step.F[k] += 3.0 * (double)(k / 1000);
-  std::vector<Record> recs = {sine(2.0, 0.05), sine(2.0, 0.05, true), sine(60.0, 0.05), step};
-  for (unsigned seed = 6; seed < 12; ++seed) recs.push_back(sine(2.0, 0.05, true, seed));
+  std::vector<Record> recs = {spiky_sine(2.0, 0.05), spiky_sine(2.0, 0.05, true), spiky_sine(60.0, 0.05), step};
+  for (unsigned seed = 6; seed < 12; ++seed) recs.push_back(spiky_sine(2.0, 0.05, true, seed));
   const std::vector<SpikedRecord> s = mask_force_spikes(recs);
   EXPECT_TRUE(s.empty()) << spikes_text(s, recs.size()) << " first: " << s[0].file;
   for (const Record &r : recs) EXPECT_TRUE(r.masked.empty());
 }
 
 TEST(ForceSpikes, TwoSpikesAreNotAGlitchedRecord) {
-  Record r = sine(2.0, 0.05);
+  Record r = spiky_sine(2.0, 0.05);
   r.F[500] += 1.0;
   r.F[2500] -= 1.0;
   std::vector<Record> recs = {r};

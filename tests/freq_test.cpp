@@ -31,7 +31,7 @@ namespace {
 using namespace rtb;
 using rtbtest::ladder_complex_stiffness;
 
-rtb_params rt_params(int N, double K0, double Kpa, double Kr, double C0, double alpha) {
+rtb_params freq_rt_params(int N, double K0, double Kpa, double Kr, double C0, double alpha) {
   rtb_params p;
   rtb_params_default(&p, RTB_MODEL_RT);
   p.cells = N;
@@ -93,7 +93,7 @@ TEST(FreqHarmonic, RecordWindowTakesTheFullAmplitudePeriods) {
 // stiffness of freq_reference.h (derived there). alpha = 1 - 1e-6 changes the
 // dashpot force by |ln v| 1e-6 < 1e-5 here, far below the 0.1% target.
 TEST(FreqClosedForm, AlphaNearOneMatchesLinearLadder) {
-  const rtb_params p = rt_params(15, 1000, 800, 3000, 2.0, 1.0 - 1e-6);
+  const rtb_params p = freq_rt_params(15, 1000, 800, 3000, 2.0, 1.0 - 1e-6);
   DynStiffOptions o;
   for (double f : {1.0, 30.0}) {
     const DynStiffPoint d = dynamic_stiffness(p, SineTest{f, 0.5}, o);
@@ -122,7 +122,7 @@ TEST(FreqClosedForm, AlphaNearOneMatchesLinearLadder) {
 // cells' creep speed scales as (Kr A / C0)^(1/alpha): the deviation falls
 // by orders of magnitude per decade of amplitude.
 TEST(FreqClosedForm, SmallAmplitudeLimitIsK0PlusKpa) {
-  const rtb_params p = rt_params(15, 1000, 800, 3000, 40, 0.2);
+  const rtb_params p = freq_rt_params(15, 1000, 800, 3000, 40, 0.2);
   DynStiffOptions o;
   double prev = INFINITY;
   for (double A : {1e-2, 1e-3}) {
@@ -143,7 +143,7 @@ TEST(FreqClosedForm, SmallAmplitudeLimitIsK0PlusKpa) {
 // An RT element with a small alpha (C0 = Ff / V^alpha at the mean speed) at
 // low frequency approaches it.
 TEST(FreqClosedForm, QuasiStaticLargeAmplitudeLoopMatchesEq17To20) {
-  rtb_params sts = rt_params(15, 1000, 800, 3000, 40, 0.2);
+  rtb_params sts = freq_rt_params(15, 1000, 800, 3000, 40, 0.2);
   sts.model = RTB_MODEL_STS;
   sts.Ff = 40.0;
   const rtbtest::StsClosedForm c = rtbtest::sts_closed_form(sts);
@@ -168,7 +168,7 @@ TEST(FreqClosedForm, QuasiStaticLargeAmplitudeLoopMatchesEq17To20) {
   EXPECT_LT(rel(tg2, c.Tg2), 1e-9);               // eq. (19)
 
   const double alpha = 0.01, V0 = 4 * c.X_star * 0.1;
-  const rtb_params rt = rt_params(15, 1000, 800, 3000, 40.0 / std::pow(V0, alpha), alpha);
+  const rtb_params rt = freq_rt_params(15, 1000, 800, 3000, 40.0 / std::pow(V0, alpha), alpha);
   loop(rt, Fpk, range, tg1, tg2);
   std::printf("[freq] RT alpha=%.2g at X*: F(X*) %.3f, range %.3f\n", alpha, Fpk, range);
   EXPECT_LT(rel(Fpk, c.Ksec * c.X_star), 0.02);
@@ -182,7 +182,7 @@ TEST(FreqClosedForm, ElementMatchesIndependentReference) {
   const rtbtest::LadderParams sets[2] = {{1000, 800, 3000, 40, 0.3, 5}, {200, 1500, 900, 25, 0.6, 3}};
   double worst_rel = 0, worst_deg = 0;
   for (const rtbtest::LadderParams &q : sets) {
-    const rtb_params p = rt_params(q.N, q.K0, q.Kpa, q.Kr, q.C0, q.alpha);
+    const rtb_params p = freq_rt_params(q.N, q.K0, q.Kpa, q.Kr, q.C0, q.alpha);
     for (double f : {1.0, 20.0})
       for (double A : {0.05, 1.0}) {
         const DynStiffPoint d = dynamic_stiffness(p, SineTest{f, A}, DynStiffOptions());
@@ -203,7 +203,7 @@ TEST(FreqClosedForm, ElementMatchesIndependentReference) {
 // runs against central differences (Richardson), for the five parameters and
 // two extensions, on a short discretization (the misfit is the discrete one).
 TEST(FreqTableFit, GradientMatchesFiniteDifferences) {
-  rtb_params p = rt_params(4, 1000, 800, 3000, 40, 0.3);
+  rtb_params p = freq_rt_params(4, 1000, 800, 3000, 40, 0.3);
   p.viscous_c = 0.5;
   p.maxwell_k = 200;
   p.maxwell_tau = 0.02;
@@ -326,7 +326,7 @@ TEST(FreqTable, ParsesAndRejectsWithFileAndLine) {
 
 namespace cli_freq {
 
-int run(const std::string &args, std::string *err = nullptr) {
+int run_rtb(const std::string &args, std::string *err = nullptr) {
   const std::string errfile = std::string(::testing::TempDir()) + "/rtb_freq_stderr.txt";
   const int st = std::system((rtb_test::kRtb + " " + args + " >/dev/null 2>" + errfile).c_str());
   if (err) {
@@ -348,17 +348,17 @@ TEST(FreqCli, DynstiffTableAndIdentifyFromIt) {
   const std::string P = dir.file("p.json"), T = dir.file("t.csv");
   cli_freq::write(P, "{\"model\":\"rt\",\"cells\":3,\"params\":{\"K0\":1000,\"Kpa\":800,\"Kr\":3000,"
                      "\"C0\":40,\"alpha\":0.3}}");
-  ASSERT_EQ(cli_freq::run("dynstiff --params " + P + " --freq 2,20 --amp 0.05,1 --out " + T), 0);
+  ASSERT_EQ(cli_freq::run_rtb("dynstiff --params " + P + " --freq 2,20 --amp 0.05,1 --out " + T), 0);
   const DynStiffTable t = read_dynstiff_table(T);
   ASSERT_EQ(t.rows.size(), 4u);
   // The CLI's figures are the library's.
-  const DynStiffPoint d = dynamic_stiffness(rt_params(3, 1000, 800, 3000, 40, 0.3),
+  const DynStiffPoint d = dynamic_stiffness(freq_rt_params(3, 1000, 800, 3000, 40, 0.3),
                                             SineTest{20, 0.05}, DynStiffOptions());
   EXPECT_NEAR(t.rows[2].stiffness, d.k.stiffness, 1e-6 * d.k.stiffness);
   EXPECT_NEAR(t.rows[2].loss_angle_deg, d.k.loss_angle_deg, 1e-6);
   // Identify from it: JSON with the table section and the uncertainty, and a header.
   const std::string J = dir.file("fit.json"), H = dir.file("fit.h");
-  ASSERT_EQ(cli_freq::run("identify --dynstiff " + T + " --cells 3 --quiet --out " + J +
+  ASSERT_EQ(cli_freq::run_rtb("identify --dynstiff " + T + " --cells 3 --quiet --out " + J +
                           " --header " + H),
             0);
   std::ifstream jf(J);
@@ -376,10 +376,10 @@ TEST(FreqCli, BadInputExits2AndWritesNothing) {
   cli_freq::write(P, "{\"model\":\"rt\",\"cells\":3,\"params\":{\"K0\":1000,\"Kpa\":800,\"Kr\":3000,"
                      "\"C0\":40,\"alpha\":0.3}}");
   std::string err;
-  EXPECT_EQ(cli_freq::run("dynstiff --params " + P + " --freq 2,x --amp 1 --out " + out, &err), 2);
+  EXPECT_EQ(cli_freq::run_rtb("dynstiff --params " + P + " --freq 2,x --amp 1 --out " + out, &err), 2);
   EXPECT_NE(err.find("--freq"), std::string::npos);
   cli_freq::write(T, "frequency,amplitude,stiffness,loss_angle_deg\n1,0.5,1200,5\n2,0.5,-3,5\n");
-  EXPECT_EQ(cli_freq::run("identify --dynstiff " + T + " --out " + out, &err), 2);
+  EXPECT_EQ(cli_freq::run_rtb("identify --dynstiff " + T + " --out " + out, &err), 2);
   EXPECT_NE(err.find(T + ":3: stiffness must be > 0"), std::string::npos) << err;
   EXPECT_FALSE(std::filesystem::exists(out));
 }

@@ -16,13 +16,11 @@
 #include "rt_bushing/rt_bushing.h"
 #include "rtb_internal.h"
 #include "tridiagonal.h"
+#include "random_configs.h"
 
 namespace {
 
-double log_uniform(std::mt19937 &g, double lo, double hi) {
-  std::uniform_real_distribution<double> u(std::log(lo), std::log(hi));
-  return std::exp(u(g));
-}
+using rtb_test::log_uniform;
 
 // The limit's conditions for the pair (v, f): the stage equation f + h K v
 // = r, still cells (v_k == 0) within [-Lm, Lp], sliding ones at their level

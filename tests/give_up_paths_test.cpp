@@ -10,10 +10,10 @@
 
 #include "rt_bushing/rt_bushing.h"
 #include "rtb_internal.h"
+#include "test_numbers.h"
 
 namespace {
 
-constexpr double kTwoPi = 6.283185307179586476925;
 
 // Near-friction dashpots (alpha = 0.013) behind a 4.7 um clearance, driven
 // by a 4.7 um, 5 Hz sine (found by a random search over such elements): the

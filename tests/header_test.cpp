@@ -24,12 +24,17 @@
 #include "offline/io/header_writer.h"
 #include "temp_dir.h"
 #include "offline/rtb_offline.h"
+#include "test_numbers.h"
+#include "text_file.h"
 
 namespace fs = std::filesystem;
 
 namespace {
 
-rtb_params rt_params() {
+using rtb_test::read_text;
+using rtb_test::shell_quote;
+
+rtb_params header_rt_params() {
   rtb_params p;
   rtb_params_default(&p, RTB_MODEL_RT);
   p.cells = 7;
@@ -74,20 +79,7 @@ rtb::HeaderInfo info_for(const std::string &name) {
   return info;
 }
 
-std::string read_text(const std::string &path) {
-  std::ifstream f(path, std::ios::binary);
-  std::stringstream ss;
-  ss << f.rdbuf();
-  return ss.str();
-}
-
-std::string shell_quote(const std::string &s) {
-  std::string out = "'";
-  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
-}
-
-int run(const std::string &cmd, std::string *output = nullptr) {
+int run_shell(const std::string &cmd, std::string *output = nullptr) {
   std::string full = cmd + " 2>&1";
   FILE *p = ::popen(full.c_str(), "r");
   if (!p) return -1;
@@ -105,7 +97,7 @@ std::string find_compiler(const char *configured, std::vector<std::string> fallb
   if (configured && *configured && ::access(configured, X_OK) == 0) return configured;
   for (const std::string &c : fallbacks) {
     std::string path;
-    if (run("command -v " + c, &path) == 0 && !path.empty()) {
+    if (run_shell("command -v " + c, &path) == 0 && !path.empty()) {
       while (!path.empty() && (path.back() == '\n' || path.back() == '\r')) path.pop_back();
       return path;
     }
@@ -113,12 +105,11 @@ std::string find_compiler(const char *configured, std::vector<std::string> fallb
   return "";
 }
 
-bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
 }  // namespace
 
 TEST(Header, ByteIdenticalOnRegeneration) {
-  const rtb_params p = rt_params();
+  const rtb_params p = header_rt_params();
   const std::string a = rtb::emit_parameter_header(p, info_for("test_bushing_rt"));
   const std::string b = rtb::emit_parameter_header(p, info_for("test_bushing_rt"));
   EXPECT_EQ(a, b);
@@ -130,7 +121,7 @@ TEST(Header, ByteIdenticalOnRegeneration) {
 }
 
 TEST(Header, Contents) {
-  const std::string h = rtb::emit_parameter_header(rt_params(), info_for("test_bushing_rt"));
+  const std::string h = rtb::emit_parameter_header(header_rt_params(), info_for("test_bushing_rt"));
   EXPECT_NE(h.find("#include \"rt_bushing.h\"\n"), std::string::npos);
   EXPECT_NE(h.find("#ifndef RTB_PARAMS_H_test_bushing_rt\n#define RTB_PARAMS_H_test_bushing_rt\n"),
             std::string::npos);
@@ -161,7 +152,7 @@ TEST(Header, Contents) {
 }
 
 TEST(Header, NameValidation) {
-  const rtb_params p = rt_params();
+  const rtb_params p = header_rt_params();
   for (const char *bad : {"", "1abc", "a-b", "a b", "int", "class", "__x", "_Foo", "rtb_params",
                           "rtb_step", "RTB_OK", "na\xc3\xafve"}) {
     EXPECT_FALSE(rtb::is_valid_header_name(bad)) << bad;
@@ -211,7 +202,7 @@ TEST(Header, CompilesAsC99AndCxx17AndMatchesSimulateBitForBit) {
   } cleanup{dir};
 
   // Headers, written the way the tool writes them.
-  const rtb_params prt = rt_params(), psts = sts_params();
+  const rtb_params prt = header_rt_params(), psts = sts_params();
   rtb::write_file_atomic(dir + "/test_bushing_rt.h",
                          rtb::emit_parameter_header(prt, info_for("test_bushing_rt")));
   rtb::write_file_atomic(dir + "/test_bushing_sts.h",
@@ -257,13 +248,13 @@ TEST(Header, CompilesAsC99AndCxx17AndMatchesSimulateBitForBit) {
   for (size_t k = 0; k < programs.size(); ++k) {
     const Program &prog = programs[k];
     std::string log;
-    ASSERT_EQ(run(prog.compile, &log), 0) << prog.label << " compile failed:\n"
+    ASSERT_EQ(run_shell(prog.compile, &log), 0) << prog.label << " compile failed:\n"
                                           << prog.compile << "\n" << log;
     const std::string exe = dir + (k == 0 ? "/client_c" : "/client_cpp");
     for (const char *model : {"rt", "sts"}) {
       const rtb_params &p = std::string(model) == "rt" ? prt : psts;
       std::string out;
-      ASSERT_EQ(run(shell_quote(exe) + " " + shell_quote(csv) + " " + model, &out), 0)
+      ASSERT_EQ(run_shell(shell_quote(exe) + " " + shell_quote(csv) + " " + model, &out), 0)
           << prog.label << " " << model << ":\n" << out;
       std::istringstream in(out);
       // Line 1: the parameter set as compiled in.
@@ -316,7 +307,7 @@ rtb_bushing6_params two_axis_params() {
   rtb_bushing6_params_default(&p, RTB_MODEL_RT);
   for (int a = 0; a < RTB_AXES; ++a) p.active[a] = 0;
   p.active[RTB_AXIS_X] = p.active[RTB_AXIS_RZ] = 1;
-  p.axis[RTB_AXIS_X] = rt_params();
+  p.axis[RTB_AXIS_X] = header_rt_params();
   p.axis[RTB_AXIS_RZ] = sts_params();
   return p;
 }
@@ -363,9 +354,9 @@ TEST(Header6, CliHeaderIsReproducibleAndCompilesAsC99AndCxx17) {
   const std::string axes = " --axis x=" + shell_quote(d.file("fx.json")) + " --axis rz=" +
                            shell_quote(d.file("mz.json"));
   std::string log;
-  ASSERT_EQ(run(rtb + " header" + axes + " --out " + shell_quote(d.file("bushing6.h")), &log), 0)
+  ASSERT_EQ(run_shell(rtb + " header" + axes + " --out " + shell_quote(d.file("bushing6.h")), &log), 0)
       << log;
-  ASSERT_EQ(run(rtb + " header" + axes + " --name bushing6 --quiet --out " +
+  ASSERT_EQ(run_shell(rtb + " header" + axes + " --name bushing6 --quiet --out " +
                     shell_quote(d.file("again.h")), &log), 0) << log;
   const std::string h = read_text(d.file("bushing6.h"));
   EXPECT_EQ(read_text(d.file("again.h")), h);
@@ -375,7 +366,7 @@ TEST(Header6, CliHeaderIsReproducibleAndCompilesAsC99AndCxx17) {
   // The six-axis JSON gives the same constant.
   rtb::write_file_atomic(d.file("b6.json"), "{\"x\": " + read_text(d.file("fx.json")) +
                                                  ", \"rz\": " + read_text(d.file("mz.json")) + "}");
-  ASSERT_EQ(run(rtb + " header --bushing6 " + shell_quote(d.file("b6.json")) +
+  ASSERT_EQ(run_shell(rtb + " header --bushing6 " + shell_quote(d.file("b6.json")) +
                     " --name bushing6 --out " + shell_quote(d.file("b6.h")), &log), 0) << log;
   EXPECT_EQ(constant_part(read_text(d.file("b6.h"))), constant_part(h));
 
@@ -395,9 +386,9 @@ TEST(Header6, CliHeaderIsReproducibleAndCompilesAsC99AndCxx17) {
        d.file("cpp6")},
   };
   for (const auto &prog : programs) {
-    ASSERT_EQ(run(prog.compile, &log), 0) << prog.label << ":\n" << prog.compile << "\n" << log;
+    ASSERT_EQ(run_shell(prog.compile, &log), 0) << prog.label << ":\n" << prog.compile << "\n" << log;
     std::string out;
-    ASSERT_EQ(run(shell_quote(prog.exe), &out), 0) << prog.label << out;
+    ASSERT_EQ(run_shell(shell_quote(prog.exe), &out), 0) << prog.label << out;
     EXPECT_EQ(out, ref) << prog.label << ": differs from rtb_bushing6_step";
   }
   EXPECT_EQ(std::count(ref.begin(), ref.end(), '\n'), 300);
@@ -407,18 +398,18 @@ TEST(Header6, CliHeaderIsReproducibleAndCompilesAsC99AndCxx17) {
 
 TEST(Header6, CliRefusesBadAxesAndWritesNothing) {
   rtb_test::TempDir d("rtb_header6_bad");
-  rtb::write_file_atomic(d.file("fx.json"), rtb::params_to_json_text(rt_params()));
+  rtb::write_file_atomic(d.file("fx.json"), rtb::params_to_json_text(header_rt_params()));
   const std::string rtb = shell_quote(rtb_test::kRtb), fx = shell_quote(d.file("fx.json"));
   const std::string out = " --out " + shell_quote(d.file("h.h"));
   std::string log;
-  EXPECT_EQ(run(rtb + " header --axis q=" + fx + out, &log), 2) << log;
+  EXPECT_EQ(run_shell(rtb + " header --axis q=" + fx + out, &log), 2) << log;
   EXPECT_NE(log.find("x y z rx ry rz"), std::string::npos) << log;
-  EXPECT_EQ(run(rtb + " header --axis x=" + fx + " --axis x=" + fx + out, &log), 2) << log;
-  EXPECT_EQ(run(rtb + " header --axis x=" + fx + " --params " + fx + out, &log), 2) << log;
-  EXPECT_EQ(run(rtb + " header --axis x=" + fx + " --out " + shell_quote(d.file("int.h")), &log), 2)
+  EXPECT_EQ(run_shell(rtb + " header --axis x=" + fx + " --axis x=" + fx + out, &log), 2) << log;
+  EXPECT_EQ(run_shell(rtb + " header --axis x=" + fx + " --params " + fx + out, &log), 2) << log;
+  EXPECT_EQ(run_shell(rtb + " header --axis x=" + fx + " --out " + shell_quote(d.file("int.h")), &log), 2)
       << log;  // the constant would be named "int"
   rtb::write_file_atomic(d.file("b6.json"), "{\"x\": {\"model\": \"rt\"}}");
-  EXPECT_EQ(run(rtb + " header --bushing6 " + shell_quote(d.file("b6.json")) + out, &log), 2);
+  EXPECT_EQ(run_shell(rtb + " header --bushing6 " + shell_quote(d.file("b6.json")) + out, &log), 2);
   EXPECT_NE(log.find("axis x"), std::string::npos) << log;
   EXPECT_EQ(d.entries(), (std::vector<std::string>{"b6.json", "fx.json"}));
 }

@@ -138,8 +138,8 @@ TEST(StsInit, InversionRecoversStsParametersOnStsLoop) {
   ts.p = sts;
   ts.oversample = 1;
   const Record rec = synthesize({InputKind::Triangle, Xstar, 0.5, 8.0, 2e-4}, ts, "sts");
-  const LoopFeatures f = detect_loop_features(rec, 2.0, 0.02);
-  const StsParams s = invert_sts(f, N);
+  const rtb::LoopFeatures f = detect_loop_features(rec, 2.0, 0.02);
+  const rtb::StsParams s = invert_sts(f, N);
   EXPECT_NEAR(s.K0 / sts.K0, 1.0, 0.02);
   EXPECT_NEAR(s.Kpa / sts.Kpa, 1.0, 0.02);
   EXPECT_NEAR(s.Kr / sts.Kr, 1.0, 0.05);
@@ -152,11 +152,11 @@ TEST(StsInit, FeaturesRobustToOnePercentNoise) {
   ts.p = truth;
   ts.oversample = 1;
   const InputSpec in{InputKind::Triangle, 2.0, 0.5, 8.0, 1e-3};
-  const LoopFeatures c = detect_loop_features(synthesize(in, ts, "clean"), 2.0);
+  const rtb::LoopFeatures c = detect_loop_features(synthesize(in, ts, "clean"), 2.0);
   ts.noise = 0.01;
   for (unsigned seed = 1; seed <= 5; ++seed) {
     ts.seed = seed;
-    const LoopFeatures f = detect_loop_features(synthesize(in, ts, "noisy"), 2.0);
+    const rtb::LoopFeatures f = detect_loop_features(synthesize(in, ts, "noisy"), 2.0);
     // Tg1 is measured over the short stretch after a cusp where the tangent
     // still holds: the noisiest feature (worst of 10 seeds measured: 10%).
     EXPECT_NEAR(f.Tg1 / c.Tg1, 1.0, 0.12) << "seed " << seed;
@@ -192,7 +192,7 @@ TEST(StsInit, FrictionStartOnASlidingDevice) {
   EXPECT_LT(f.K0, 0.2 * f.Kpa);
   EXPECT_LT(f.Kr, 1e-2 * f.Kpa);
   // The sliding level C0 |v|^alpha at the records' mean speed.
-  LoopFeatures feat;
+  rtb::LoopFeatures feat;
   sts_initial_guess(recs, truth.cells, 0.2, 1.0, &feat);
   const double level = f.C0 * std::pow(feat.V0, f.alpha);
   EXPECT_NEAR(level / (truth.C0 * std::pow(feat.V0, truth.alpha)), 1.0, 0.25);

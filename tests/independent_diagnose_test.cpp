@@ -24,7 +24,7 @@
 
 namespace {
 
-constexpr double kDuration = 4.0;  // s per record
+constexpr double kRefgenDuration = 4.0;  // s per record
 
 struct Diagnosed {
   rtb::DiagnoseResult R;
@@ -40,7 +40,7 @@ struct Diagnosed {
 
 Diagnosed diagnose_refgen(const std::vector<std::string> &effects, unsigned seed,
                           const rtb::DiagnoseOptions &opt = rtb::DiagnoseOptions()) {
-  const refgen::Scenario sc = refgen::make_scenario(effects, seed, kDuration);
+  const refgen::Scenario sc = refgen::make_scenario(effects, seed, kRefgenDuration);
   std::vector<rtb::Record> fit, hold;
   std::vector<refgen::Samples> held;
   for (size_t i = 0; i < sc.records.size(); ++i) {
@@ -108,7 +108,7 @@ TEST_P(AbsorbedMaxwell, IsFoundAtTheGeneratorsTime) {
   RTB_SKIP_UNDER_SANITIZERS();
   const unsigned seed = GetParam();
   const Diagnosed d = diagnose_refgen("maxwell", seed);
-  const refgen::Scenario sc = refgen::make_scenario({"maxwell"}, seed, kDuration);
+  const refgen::Scenario sc = refgen::make_scenario({"maxwell"}, seed, kRefgenDuration);
   ASSERT_FALSE(d.R.causes.empty()) << d.R.verdict;
   EXPECT_EQ(d.R.causes[0].cand.name, "maxwell") << d.R.verdict;
   ASSERT_EQ(sc.specimen.branches.size(), 1u);
@@ -272,7 +272,7 @@ TEST_P(BranchBesideOffset, IsFoundAtTheGeneratorsTime) {
   const unsigned seed = GetParam();
   const std::vector<std::string> effects{"maxwell", "offset"};
   const Diagnosed d = diagnose_refgen(effects, seed);
-  const refgen::Scenario sc = refgen::make_scenario(effects, seed, kDuration);
+  const refgen::Scenario sc = refgen::make_scenario(effects, seed, kRefgenDuration);
   ASSERT_EQ(d.R.causes.size(), 2u) << d.R.verdict;
   EXPECT_EQ(d.R.causes[0].cand.name, "offset") << d.R.verdict;
   EXPECT_EQ(d.R.causes[1].cand.name, "maxwell") << d.R.verdict;
@@ -309,7 +309,7 @@ TEST(IndependentDiagnose, ASpecimenAtAnotherTemperaturePerTestIsUnexplained) {
 TEST(IndependentDiagnose, DelaySeenAtHighFrequencyIsAPureLag) {
   RTB_SKIP_UNDER_SANITIZERS();
   const Diagnosed d = diagnose_refgen("delay", 17);
-  const refgen::Scenario sc = refgen::make_scenario({"delay"}, 17, kDuration);
+  const refgen::Scenario sc = refgen::make_scenario({"delay"}, 17, kRefgenDuration);
   ASSERT_EQ(d.R.cause, "delay") << d.R.verdict;
   EXPECT_FALSE(d.R.extended.delay_lowpass) << "a pure lag, not a low-pass: " << d.R.verdict;
   EXPECT_NEAR(d.R.extended.delay, sc.chain.delay, 0.05 * sc.chain.delay) << d.R.verdict;
@@ -326,7 +326,7 @@ TEST(IndependentDiagnose, DelaySeenAtHighFrequencyIsAPureLag) {
 TEST(IndependentDiagnose, DelayAndAsymmetryAreBothNamed) {
   RTB_SKIP_UNDER_SANITIZERS();
   const Diagnosed d = diagnose_refgen(std::vector<std::string>{"delay", "asymmetry"}, 12);
-  const refgen::Scenario sc = refgen::make_scenario({"delay", "asymmetry"}, 12, kDuration);
+  const refgen::Scenario sc = refgen::make_scenario({"delay", "asymmetry"}, 12, kRefgenDuration);
   ASSERT_EQ(d.R.causes.size(), 2u) << d.R.verdict;
   std::vector<std::string> names = {d.R.causes[0].cand.name, d.R.causes[1].cand.name};
   std::sort(names.begin(), names.end());
@@ -350,7 +350,7 @@ TEST(IndependentDiagnose, TwoWordsThatPayOnlyTogetherAreAPair) {
   rtb::DiagnoseOptions opt;
   opt.min_gain = 0.5;
   const Diagnosed d = diagnose_refgen(std::vector<std::string>{"delay", "asymmetry"}, 12, opt);
-  const refgen::Scenario sc = refgen::make_scenario({"delay", "asymmetry"}, 12, kDuration);
+  const refgen::Scenario sc = refgen::make_scenario({"delay", "asymmetry"}, 12, kRefgenDuration);
   ASSERT_EQ(d.R.causes.size(), 2u) << d.R.verdict;
   std::vector<std::string> names = {d.R.causes[0].cand.name, d.R.causes[1].cand.name};
   std::sort(names.begin(), names.end());

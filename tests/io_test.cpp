@@ -23,27 +23,19 @@
 #include "offline/io/params_json.h"
 #include "offline/io/sha256.h"
 #include "offline/rtb_offline.h"
+#include "text_file.h"
 
 namespace fs = std::filesystem;
 
 namespace {
 
-class TempDir : public rtb_test::TempDir {
+using rtb_test::read_text;
+using rtb_test::write_text;
+
+class IoTempDir : public rtb_test::TempDir {
  public:
-  TempDir() : rtb_test::TempDir("rtb_io_test") {}
+  IoTempDir() : rtb_test::TempDir("rtb_io_test") {}
 };
-
-void write_text(const std::string &path, const std::string &text) {
-  std::ofstream f(path, std::ios::binary);
-  f << text;
-}
-
-std::string read_text(const std::string &path) {
-  std::ifstream f(path, std::ios::binary);
-  std::stringstream ss;
-  ss << f.rdbuf();
-  return ss.str();
-}
 
 // Rows "t,x,F" for i = 0..n-1.
 std::string rows(int n, int first = 0) {
@@ -79,17 +71,17 @@ const std::string kHeader = "time,displacement,force\n";
 // ------------------------------------------------------------------ CSV errors
 
 TEST(IoCsv, MissingFileNamesPath) {
-  TempDir d;
+  IoTempDir d;
   expect_input_error(d.file("nope.csv"), {d.file("nope.csv"), "cannot open"});
 }
 
 TEST(IoCsv, DirectoryIsNotARecord) {
-  TempDir d;
+  IoTempDir d;
   EXPECT_THROW(rtb::read_record_csv(d.path()), rtb::InputError);
 }
 
 TEST(IoCsv, EmptyFileAndCommentsOnlyHaveNoHeader) {
-  TempDir d;
+  IoTempDir d;
   write_text(d.file("empty.csv"), "");
   expect_input_error(d.file("empty.csv"), {d.file("empty.csv") + ":1:", "no header"});
   write_text(d.file("comments.csv"), "# a\n# units: time=s\n\n");
@@ -97,13 +89,13 @@ TEST(IoCsv, EmptyFileAndCommentsOnlyHaveNoHeader) {
 }
 
 TEST(IoCsv, DataWithoutHeaderLine) {
-  TempDir d;
+  IoTempDir d;
   write_text(d.file("a.csv"), "# c\n" + rows(10));
   expect_input_error(d.file("a.csv"), {d.file("a.csv") + ":2:", "no header"});
 }
 
 TEST(IoCsv, MissingColumnIsNamed) {
-  TempDir d;
+  IoTempDir d;
   const char *cases[][2] = {{"displacement,force\n", "'time'"},
                             {"time,force\n", "'displacement'"},
                             {"time,displacement\n", "'force'"},
@@ -118,7 +110,7 @@ TEST(IoCsv, MissingColumnIsNamed) {
 }
 
 TEST(IoCsv, ColumnNamesWithUnitsAndCommonAliases) {
-  TempDir d;
+  IoTempDir d;
   const char *headers[] = {"t,x,F", "Time [s],Disp (mm),Force [N]", "time_s,displacement_mm,force_kN",
                            "load,stroke,time", "sample,T,u,f,temperature"};
   for (const char *h : headers) {
@@ -147,13 +139,13 @@ TEST(IoCsv, ColumnNamesWithUnitsAndCommonAliases) {
 }
 
 TEST(IoCsv, DuplicateColumnRejected) {
-  TempDir d;
+  IoTempDir d;
   write_text(d.file("a.csv"), "time,displacement,force,Time\n" + rows(10));
   expect_input_error(d.file("a.csv"), {d.file("a.csv") + ":1:", "'time'", "twice"});
 }
 
 TEST(IoCsv, NonNumericCellQuotedWithColumn) {
-  TempDir d;
+  IoTempDir d;
   const std::string p = d.file("a.csv");
   write_text(p, kHeader + rows(3) + "0.03,abc,1\n" + rows(10, 4));
   expect_input_error(p, {p + ":5:", "'displacement'", "\"abc\"", "non-numeric"});
@@ -164,7 +156,7 @@ TEST(IoCsv, NonNumericCellQuotedWithColumn) {
 }
 
 TEST(IoCsv, NonFiniteCellsRejected) {
-  TempDir d;
+  IoTempDir d;
   const std::string p = d.file("a.csv");
   for (const char *bad : {"nan", "NaN", "inf", "-Infinity", "1e999"}) {
     write_text(p, kHeader + rows(3) + "0.03,0.3," + bad + "\n" + rows(10, 4));
@@ -173,7 +165,7 @@ TEST(IoCsv, NonFiniteCellsRejected) {
 }
 
 TEST(IoCsv, RowWithWrongFieldCount) {
-  TempDir d;
+  IoTempDir d;
   const std::string p = d.file("a.csv");
   write_text(p, kHeader + rows(4) + "0.04,0.4\n" + rows(10, 5));
   expect_input_error(p, {p + ":6:", "2 fields", "header has 3"});
@@ -182,7 +174,7 @@ TEST(IoCsv, RowWithWrongFieldCount) {
 }
 
 TEST(IoCsv, NonIncreasingTimeGivesBothTimes) {
-  TempDir d;
+  IoTempDir d;
   const std::string p = d.file("a.csv");
   write_text(p, kHeader + "0,0,0\n0.5,1,1\n0.5,2,2\n" + rows(10, 10));
   expect_input_error(p, {p + ":4:", "not increasing", "0.5 follows 0.5", "line 3"});
@@ -191,7 +183,7 @@ TEST(IoCsv, NonIncreasingTimeGivesBothTimes) {
 }
 
 TEST(IoCsv, TooFewRows) {
-  TempDir d;
+  IoTempDir d;
   const std::string p = d.file("a.csv");
   write_text(p, kHeader + rows(rtb::kMinSamples - 1));
   expect_input_error(p, {p + ":", "only 7 data rows", "at least 8"});
@@ -200,7 +192,7 @@ TEST(IoCsv, TooFewRows) {
 }
 
 TEST(IoCsv, BlankLineInsideDataRejected) {
-  TempDir d;
+  IoTempDir d;
   const std::string p = d.file("a.csv");
   write_text(p, kHeader + rows(4) + "\n" + rows(6, 4));
   expect_input_error(p, {p + ":6:", "blank line"});
@@ -209,7 +201,7 @@ TEST(IoCsv, BlankLineInsideDataRejected) {
 // ------------------------------------------------------------------ CSV good files
 
 TEST(IoCsv, ReadsCommentsUnitsAndValuesExactly) {
-  TempDir d;
+  IoTempDir d;
   const std::string p = d.file("a.csv");
   const std::string text =
       "# source: x\n# units: time=s displacement=in force=kip\n" + kHeader +
@@ -229,7 +221,7 @@ TEST(IoCsv, ReadsCommentsUnitsAndValuesExactly) {
 }
 
 TEST(IoCsv, ReorderedExtraColumnsCaseAndBlanks) {
-  TempDir d;
+  IoTempDir d;
   const std::string p = d.file("a.csv");
   std::string text = " Force , velocity,TIME,\"Displacement\" ,note\n";
   for (int i = 0; i < 9; ++i)
@@ -246,7 +238,7 @@ TEST(IoCsv, ReorderedExtraColumnsCaseAndBlanks) {
 }
 
 TEST(IoCsv, CrlfBomAndTrailingBlankLines) {
-  TempDir d;
+  IoTempDir d;
   const std::string p = d.file("a.csv");
   std::string text = "\xEF\xBB\xBF# units: time=s displacement=mm force=N\r\n" +
                      std::string("time,displacement,force\r\n");
@@ -263,7 +255,7 @@ TEST(IoCsv, CrlfBomAndTrailingBlankLines) {
 // European rigs: ';' between fields and a decimal comma; tab-separated
 // exports; a malformed row is still named by file and line.
 TEST(IoCsv, SemicolonsDecimalCommasAndTabs) {
-  TempDir d;
+  IoTempDir d;
   const std::string p = d.file("a.csv");
   std::string text = "Zeit;Weg;Kraft;time [s];stroke [mm];force [N]\n";
   for (int i = 0; i < 9; ++i)
@@ -287,7 +279,7 @@ TEST(IoCsv, SemicolonsDecimalCommasAndTabs) {
 }
 
 TEST(IoCsv, ForceOptionalOnRequest) {
-  TempDir d;
+  IoTempDir d;
   const std::string p = d.file("a.csv");
   std::string text = "time,displacement\n";
   for (int i = 0; i < 9; ++i) text += std::to_string(i) + "," + std::to_string(i * i) + "\n";
@@ -305,7 +297,7 @@ TEST(IoCsv, ForceOptionalOnRequest) {
 }
 
 TEST(IoCsv, ThirtyThousandRowsAreFast) {
-  TempDir d;
+  IoTempDir d;
   const std::string p = d.file("big.csv");
   std::string text = "# units: time=s displacement=in force=kip\n" + kHeader;
   char buf[128];
@@ -335,7 +327,7 @@ TEST(IoCsv, RealDataFileIfPresent) {
 }
 
 TEST(IoCsv, WriteReadRoundTripIsExact) {
-  TempDir d;
+  IoTempDir d;
   const std::string p = d.file("w.csv");
   std::vector<double> t, x, F;
   for (int i = 0; i < 50; ++i) {
@@ -394,7 +386,7 @@ TEST(IoSha256, IncrementalEqualsOneShotAndFile) {
     for (size_t i = 0; i < msg.size(); i += chunk) s.update(msg.data() + i, std::min(chunk, msg.size() - i));
     EXPECT_EQ(s.hex_digest(), one) << "chunk " << chunk;
   }
-  TempDir d;
+  IoTempDir d;
   write_text(d.file("m.bin"), msg);
   EXPECT_EQ(rtb::sha256_file(d.file("m.bin")), one);
   EXPECT_THROW(rtb::sha256_file(d.file("none")), rtb::InputError);
@@ -403,7 +395,7 @@ TEST(IoSha256, IncrementalEqualsOneShotAndFile) {
 // ------------------------------------------------------------------ atomic write
 
 TEST(IoAtomic, WritesAndReplacesWithoutLeftovers) {
-  TempDir d;
+  IoTempDir d;
   const std::string p = d.file("out.txt");
   rtb::write_file_atomic(p, "first\n");
   EXPECT_EQ(read_text(p), "first\n");
@@ -415,7 +407,7 @@ TEST(IoAtomic, WritesAndReplacesWithoutLeftovers) {
 }
 
 TEST(IoAtomic, KeepsModeOfExistingFile) {
-  TempDir d;
+  IoTempDir d;
   const std::string p = d.file("out.txt");
   write_text(p, "old");
   ASSERT_EQ(::chmod(p.c_str(), 0640), 0);
@@ -426,7 +418,7 @@ TEST(IoAtomic, KeepsModeOfExistingFile) {
 }
 
 TEST(IoAtomic, FailureAtAnyStageLeavesOldFileAndNoTemp) {
-  TempDir d;
+  IoTempDir d;
   const std::string p = d.file("keep.txt");
   write_text(p, "precious");
   for (int stage = 1; stage <= 4; ++stage) {
@@ -444,7 +436,7 @@ TEST(IoAtomic, FailureAtAnyStageLeavesOldFileAndNoTemp) {
 }
 
 TEST(IoAtomic, TargetIsDirectoryOrMissingDirectory) {
-  TempDir d;
+  IoTempDir d;
   fs::create_directory(d.file("sub"));
   write_text(d.file("sub/inner"), "x");
   EXPECT_THROW(rtb::write_file_atomic(d.file("sub"), "data"), std::runtime_error);
@@ -455,7 +447,7 @@ TEST(IoAtomic, TargetIsDirectoryOrMissingDirectory) {
 }
 
 TEST(IoAtomic, UnwritableDirectoryLeavesOldFile) {
-  TempDir d;
+  IoTempDir d;
   const std::string p = d.file("keep.txt");
   write_text(p, "precious");
   ASSERT_EQ(::chmod(d.path().c_str(), 0555), 0);
@@ -590,7 +582,7 @@ TEST(IoParams, InvalidJsonGivesLine) {
 }
 
 TEST(IoParams, FileErrorsNamePath) {
-  TempDir d;
+  IoTempDir d;
   try {
     rtb::read_params_json(d.file("none.json"));
     ADD_FAILURE() << "no error";

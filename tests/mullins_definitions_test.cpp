@@ -24,7 +24,7 @@ rtb_params paper(int model) {
 
 // A growing then shrinking sine (a Mullins history: every level below the
 // prior maximum after the peak), 1 kHz.
-double input(int k) {
+double mullins_input(int k) {
   const double t = 1e-3 * k;
   const double env = t < 1.0 ? 0.3 + 0.9 * t : std::max(0.2, 1.2 - 0.6 * (t - 1.0));
   return env * std::sin(2.0 * M_PI * 2.0 * t);
@@ -48,7 +48,7 @@ TEST(MullinsDefinitions, WholeSofteningScalesThePlainForceExactly) {
     ASSERT_EQ(rtb_state_init(&sk, &k0, 0.0), RTB_OK);
     double m = 0.0, worst = 0.0, fmax = 0.0, differs = 0.0;
     for (int k = 1; k <= 2500; ++k) {
-      const double x = input(k);
+      const double x = mullins_input(k);
       double Fp, Fw, Fk;
       ASSERT_GE(rtb_step(&sp, &plain, NULL, x, 1e-3, &Fp), 0);
       ASSERT_GE(rtb_step(&sw, &whole, NULL, x, 1e-3, &Fw), 0);
@@ -82,7 +82,7 @@ TEST(MullinsDefinitions, ErfShapeScalesThePlainForceExactly) {
     ASSERT_EQ(rtb_state_init(&se, &erfw, 0.0), RTB_OK);
     double m = 0.0, worst = 0.0, fmax = 0.0, lowest_eta = 1.0;
     for (int k = 1; k <= 2500; ++k) {
-      const double x = input(k);
+      const double x = mullins_input(k);
       double Fp, Fe;
       ASSERT_GE(rtb_step(&sp, &plain, NULL, x, 1e-3, &Fp), 0);
       ASSERT_GE(rtb_step(&se, &erfw, NULL, x, 1e-3, &Fe), 0);
@@ -113,8 +113,8 @@ TEST(MullinsDefinitions, FlagIsValidatedAndOffWithoutALoss) {
   ASSERT_EQ(rtb_state_init(&b, &q, 0.0), RTB_OK);
   for (int k = 1; k <= 300; ++k) {
     double Fa, Fb;
-    ASSERT_GE(rtb_step(&a, &p, NULL, input(k), 1e-3, &Fa), 0);
-    ASSERT_GE(rtb_step(&b, &q, NULL, input(k), 1e-3, &Fb), 0);
+    ASSERT_GE(rtb_step(&a, &p, NULL, mullins_input(k), 1e-3, &Fa), 0);
+    ASSERT_GE(rtb_step(&b, &q, NULL, mullins_input(k), 1e-3, &Fb), 0);
     ASSERT_EQ(Fa, Fb) << k;
   }
 }

@@ -10,10 +10,10 @@
 #include <vector>
 
 #include "offline/diagnose/noise_floor.h"
+#include "test_numbers.h"
 
 namespace {
 
-constexpr double kTwoPi = 6.283185307179586;
 
 // Unit-variance noise with correlation a^|k| (a = 0: white), plus a smooth
 // model error of amplitude `smooth` at 20 Hz (1 kHz sampling).

@@ -33,7 +33,7 @@ constexpr double kPaperTol = 0.01;
 struct StsLoop {
   Trace tr;
   Window w;
-  LoopFeatures L;
+  rtbtest::LoopFeatures L;
   double tg1_top, tg2_top, tg1_bottom, tg2_bottom;  // chords next to both cusps
 };
 
@@ -179,18 +179,18 @@ TEST(PhysicsSts, InversionEq21To24RoundTrip) {
   ASSERT_TRUE(r.tr.ok());
   const double range_F = r.L.F_at_xmax - r.L.F_at_xmin, range_x = r.L.x_max - r.L.x_min;
 
-  const StsParams inv = sts_invert(r.tg1_top, r.tg2_top, range_F, range_x, 15);
+  const rtbtest::StsParams inv = sts_invert(r.tg1_top, r.tg2_top, range_F, range_x, 15);
   EXPECT_TRUE(RelNear(inv.K0, p.K0, kPaperTol));
   EXPECT_TRUE(RelNear(inv.Kpa, p.Kpa, kPaperTol));
   EXPECT_TRUE(RelNear(inv.Kr, p.Kr, kPaperTol));
   EXPECT_TRUE(RelNear(inv.Ff, p.Ff, kPaperTol));
 
-  const StsParams amp = sts_invert(r.tg1_top, r.tg2_top, r.L.F_at_xmax, r.L.x_max, 15);
+  const rtbtest::StsParams amp = sts_invert(r.tg1_top, r.tg2_top, r.L.F_at_xmax, r.L.x_max, 15);
   EXPECT_TRUE(RelNear(amp.Kr, p.Kr, kPaperTol));
   EXPECT_TRUE(RelNear(amp.Ff, 0.5 * p.Ff, kPaperTol));
 
   // Same features with N = 9.
-  const StsParams inv9 = sts_invert(r.tg1_top, r.tg2_top, range_F, range_x, 9);
+  const rtbtest::StsParams inv9 = sts_invert(r.tg1_top, r.tg2_top, range_F, range_x, 9);
   const rtb_params p9 = sts_params(9, inv9.K0, inv9.Kpa, inv9.Kr, inv9.Ff);
   const StsClosedForm c9 = sts_closed_form(p9);
   EXPECT_TRUE(RelNear(c9.X_star, c.X_star, 1e-9));
@@ -375,7 +375,7 @@ TEST(PhysicsCellCount, LoopsConvergeForTenCellsOrMore) {
   const std::vector<int> Ns = {2, 5, 10, 15, 20};
   std::vector<Trace> tr;
   for (int N : Ns) {
-    const StsParams inv = sts_invert(c.Tg1, c.Tg2, 2.0 * c.F_max, 2.0 * c.X_star, N);
+    const rtbtest::StsParams inv = sts_invert(c.Tg1, c.Tg2, 2.0 * c.F_max, 2.0 * c.X_star, N);
     EXPECT_TRUE(RelNear(inv.K0, 1000.0, 1e-9));
     EXPECT_TRUE(RelNear(inv.Kpa, 800.0, 1e-9));
     EXPECT_TRUE(RelNear(inv.Kr, 3000.0 * (N - 1) / 14.0, 1e-9));

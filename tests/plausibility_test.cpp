@@ -17,13 +17,13 @@
 namespace rtb {
 namespace {
 
-constexpr double kDt = 1e-3, kDelay = 4.5e-3;
+constexpr double kRecordDt = 1e-3, kDelay = 4.5e-3;
 
 // From rest at x = 0 (a quarter period in), 3 s, ending away from 0.
 Record periodic(const char *name, double hz, double amp, bool triangle) {
   Record r;
   r.path = name;
-  for (double t = 0.0; t <= 3.0 + 1e-12; t += kDt) {
+  for (double t = 0.0; t <= 3.0 + 1e-12; t += kRecordDt) {
     const double phase = hz * t + 0.25 - std::floor(hz * t + 0.25);
     r.t.push_back(t);
     r.x.push_back(amp * (triangle ? 1.0 - 4.0 * std::fabs(phase - 0.5)
@@ -36,7 +36,7 @@ Record periodic(const char *name, double hz, double amp, bool triangle) {
 using rtb_test::paper_model;
 
 // Two slow triangles (0.25 Hz) and a 5 Hz sine, measured through `truth`.
-std::vector<Record> measured_through(const ExtModel &truth) {
+std::vector<Record> plausibility_records(const ExtModel &truth) {
   std::vector<Record> recs = {periodic("triangle_a", 0.25, 1.2, true),
                               periodic("triangle_b", 0.25, 0.8, true),
                               periodic("sine_5hz", 5.0, 0.4, false)};
@@ -44,7 +44,7 @@ std::vector<Record> measured_through(const ExtModel &truth) {
   return recs;
 }
 
-std::string check(const ExtModel &current, const std::vector<Record> &recs, double delay) {
+std::string judged(const ExtModel &current, const std::vector<Record> &recs, double delay) {
   ExtModel fitted = current;
   fitted.delay = delay;
   const std::vector<double> sigma(recs.size(), 1.0);
@@ -54,12 +54,12 @@ std::string check(const ExtModel &current, const std::vector<Record> &recs, doub
 TEST(DelayPlausibility, ATrueDelayIsNotRefused) {
   ExtModel truth = paper_model();
   truth.delay = kDelay;
-  EXPECT_EQ(check(paper_model(), measured_through(truth), kDelay), "");
+  EXPECT_EQ(judged(paper_model(), plausibility_records(truth), kDelay), "");
 }
 
 TEST(DelayPlausibility, AForceThatDoesNotLagRefusesTheDelay) {
   // 10 ms: at 1 kHz a claim of a few samples is within the lag's resolution.
-  const std::string why = check(paper_model(), measured_through(paper_model()), 10e-3);
+  const std::string why = judged(paper_model(), plausibility_records(paper_model()), 10e-3);
   EXPECT_NE(why.find("cross-correlation"), std::string::npos) << why;
 }
 
@@ -77,7 +77,7 @@ TEST(DelayPlausibility, SlowRecordsDoNotOutvoteASharpOne) {
                               periodic("triangle_b", 0.15, 0.8, true),
                               periodic("sine_8hz", 8.0, 0.3, false)};
   rtb_test::measure_through(truth, recs);
-  EXPECT_EQ(check(paper_model(), recs, kDelay), "");
+  EXPECT_EQ(judged(paper_model(), recs, kDelay), "");
 }
 
 // A preloaded record: the lag of the dynamics, whatever static force it

@@ -16,7 +16,7 @@
 namespace rtb {
 namespace {
 
-Record sine_record(double f_hz, double dt, double T) {
+Record filter_sine_record(double f_hz, double dt, double T) {
   Record r;
   r.path = "sine";
   for (double t = 0.0; t <= T + 1e-12; t += dt) {
@@ -30,30 +30,30 @@ Record sine_record(double f_hz, double dt, double T) {
 // A passive specimen's force rises with its displacement; a record whose
 // force falls with it was signed the other way round.
 TEST(ForceSign, FlipsOnlyAClearlyOppositeConvention) {
-  Record r = sine_record(1.0, 1e-3, 2.0);
+  Record r = filter_sine_record(1.0, 1e-3, 2.0);
   double c = 0.0;
   EXPECT_EQ(force_sign_of({r}, &c), 1);
   EXPECT_NEAR(c, 1.0, 1e-12);
   for (double &f : r.F) f = -900.0 * f + 50.0;  // compression-positive, with a preload
   EXPECT_EQ(force_sign_of({r}, &c), -1);
   EXPECT_NEAR(c, -1.0, 1e-12);
-  Record lag = sine_record(1.0, 1e-3, 2.0);  // a lossy loop: the force leads by 60 degrees
+  Record lag = filter_sine_record(1.0, 1e-3, 2.0);  // a lossy loop: the force leads by 60 degrees
   for (size_t i = 0; i < lag.t.size(); ++i) lag.F[i] = std::sin(2 * M_PI * lag.t[i] + M_PI / 3);
   EXPECT_EQ(force_sign_of({lag}), 1);
-  Record noise = sine_record(1.0, 1e-3, 2.0);  // no relation: keep the sign as recorded
+  Record noise = filter_sine_record(1.0, 1e-3, 2.0);  // no relation: keep the sign as recorded
   for (size_t i = 0; i < noise.t.size(); ++i) noise.F[i] = std::cos(2 * M_PI * 37.0 * noise.t[i]);
   EXPECT_EQ(force_sign_of({noise}), 1);
   Preprocess pp;
   pp.force_sign = -1;
-  std::vector<Record> recs = {sine_record(1.0, 1e-3, 0.1)};
+  std::vector<Record> recs = {filter_sine_record(1.0, 1e-3, 0.1)};
   apply_preprocess(pp, recs, true);
-  EXPECT_EQ(recs[0].F[10], -sine_record(1.0, 1e-3, 0.1).F[10]);
+  EXPECT_EQ(recs[0].F[10], -filter_sine_record(1.0, 1e-3, 0.1).F[10]);
   EXPECT_EQ(preprocess_json(pp)["force_sign"], -1);
 }
 
 TEST(Lowpass, PassesSlowSineWithoutLagAndStopsChatter) {
   const double dt = 1.0 / 1024.0;
-  const Record slow = sine_record(0.5, dt, 8.0), fast = sine_record(50.0, dt, 8.0);
+  const Record slow = filter_sine_record(0.5, dt, 8.0), fast = filter_sine_record(50.0, dt, 8.0);
   const std::vector<double> ys = lowpass_zero_phase(slow.F, dt, 20.0);
   const std::vector<double> yf = lowpass_zero_phase(fast.F, dt, 20.0);
   double es = 0, af = 0;
@@ -69,7 +69,7 @@ TEST(Lowpass, PassesSlowSineWithoutLagAndStopsChatter) {
 TEST(Lowpass, KeepsAConstantAndRefusesANonUniformGrid) {
   const std::vector<double> c(100, 3.5);
   for (double v : lowpass_zero_phase(c, 0.01, 5.0)) EXPECT_NEAR(v, 3.5, 1e-12);
-  std::vector<Record> recs = {sine_record(1.0, 0.01, 2.0)};
+  std::vector<Record> recs = {filter_sine_record(1.0, 0.01, 2.0)};
   recs[0].t[50] += 0.004;  // 40% jitter at one sample
   Preprocess pp;
   pp.lowpass_hz = 5.0;
@@ -83,7 +83,7 @@ TEST(Decimate, KeepsEveryKthFilteredSampleAndRefusesToAlias) {
   Preprocess pp;
   pp.lowpass_hz = 20.0;
   pp.decimate = 5;
-  std::vector<Record> recs = {sine_record(0.5, dt, 4.0)};
+  std::vector<Record> recs = {filter_sine_record(0.5, dt, 4.0)};
   const Record orig = recs[0];
   apply_preprocess(pp, recs, false);
   const Record &d = recs[0];
@@ -121,7 +121,7 @@ TEST(Reversals, FoundThroughNoiseBelowTheBand) {
 }
 
 TEST(Masks, LeaveSamplesOutOfEveryMisfit) {
-  std::vector<Record> recs = {sine_record(1.0, 0.01, 2.0)};
+  std::vector<Record> recs = {filter_sine_record(1.0, 0.01, 2.0)};
   Preprocess pp;
   pp.masks = {parse_time_window("0.5:1.0", "--mask")};
   pp.weights = {2.0};
@@ -144,7 +144,7 @@ TEST(Masks, BadOptionsAreReportedByName) {
   EXPECT_THROW(parse_time_window("2:1", "--mask"), InputError);
   EXPECT_THROW(parse_time_window("1", "--mask"), InputError);
   EXPECT_THROW(parse_time_window("a:2", "--mask"), InputError);
-  std::vector<Record> recs = {sine_record(1.0, 0.01, 1.0), sine_record(1.0, 0.01, 1.0)};
+  std::vector<Record> recs = {filter_sine_record(1.0, 0.01, 1.0), filter_sine_record(1.0, 0.01, 1.0)};
   Preprocess pp;
   pp.weights = {1.0};
   try {

@@ -30,6 +30,7 @@
 
 #include "physics_helpers.h"
 #include "rt_bushing/rt_bushing.h"
+#include "test_numbers.h"
 
 #if defined(__SANITIZE_ADDRESS__)
 #define RTB_TEST_ASAN 1
@@ -203,7 +204,7 @@ TEST(RealtimeAllocCounter, SeesMallocAndOperatorNew) {
 }
 
 // ------------------------------------------------------------ scenarios
-struct Scenario {
+struct InputScenario {
   const char *name;
   int model;
   int integrator;
@@ -211,7 +212,7 @@ struct Scenario {
   bool extensions;
 };
 
-rtb_params make_params(const Scenario &sc) {
+rtb_params make_params(const InputScenario &sc) {
   rtb_params p;
   rtb_params_default(&p, sc.model);
   p.integrator = sc.integrator;
@@ -236,11 +237,10 @@ int expected_max_total(const rtb_params &p) {
   return p.model == RTB_MODEL_STS ? 48 : 30 * stages(p);
 }
 
-constexpr double kTwoPi = 6.283185307179586476925;
 
 // Displacement history: a multi-frequency sine with amplitude sweeps, so the
 // RT dashpots go through slow and fast phases and the backlash opens/closes.
-double input(long i, double dt) {
+double scenario_input(long i, double dt) {
   const double t = static_cast<double>(i) * dt;
   return 1.5 * std::sin(kTwoPi * 3.0 * t) * (0.5 + 0.5 * std::sin(kTwoPi * 0.1 * t)) +
          0.02 * std::sin(kTwoPi * 47.0 * t);
@@ -276,7 +276,7 @@ RunResult run(const rtb_params &p, const rtb_settings *set, long calls) {
   }
   for (long i = 1; i <= calls && st == RTB_OK; ++i) {
     double f = 0.0, df = 0.0;
-    const double x = input(i, dt);
+    const double x = scenario_input(i, dt);
     rtb_status r;
     rtb_step_info info;
     info.iterations = 0;
@@ -310,12 +310,12 @@ RunResult run(const rtb_params &p, const rtb_settings *set, long calls) {
   return res;
 }
 
-class RealtimeScenario : public ::testing::TestWithParam<Scenario> {};
+class RealtimeScenario : public ::testing::TestWithParam<InputScenario> {};
 
 constexpr long kCalls = 100000;
 
 TEST_P(RealtimeScenario, NoHeapAndBoundedWork) {
-  const Scenario sc = GetParam();
+  const InputScenario sc = GetParam();
   const rtb_params p = make_params(sc);
   ASSERT_EQ(rtb_params_validate(&p), RTB_OK);
 
@@ -339,7 +339,7 @@ TEST_P(RealtimeScenario, NoHeapAndBoundedWork) {
 // that the cap was ignored). STS does not use max_iter: its active set still
 // terminates as with the defaults.
 TEST_P(RealtimeScenario, IterationCapRespected) {
-  const Scenario sc = GetParam();
+  const InputScenario sc = GetParam();
   const rtb_params p = make_params(sc);
   rtb_settings set;
   rtb_settings_default(&set);
@@ -364,7 +364,7 @@ TEST_P(RealtimeScenario, IterationCapRespected) {
   }
 }
 
-const Scenario kScenarios[] = {
+const InputScenario kScenarios[] = {
     {"RT_SDIRK2", RTB_MODEL_RT, RTB_INTEGRATOR_SDIRK2, RTB_DEFAULT_CELLS, false},
     {"RT_BE", RTB_MODEL_RT, RTB_INTEGRATOR_BE, RTB_DEFAULT_CELLS, false},
     {"STS", RTB_MODEL_STS, RTB_INTEGRATOR_SDIRK2, RTB_DEFAULT_CELLS, false},
@@ -376,7 +376,7 @@ const Scenario kScenarios[] = {
 };
 
 INSTANTIATE_TEST_SUITE_P(All, RealtimeScenario, ::testing::ValuesIn(kScenarios),
-                         [](const ::testing::TestParamInfo<Scenario> &info) {
+                         [](const ::testing::TestParamInfo<InputScenario> &info) {
                            return std::string(info.param.name);
                          });
 

@@ -33,7 +33,7 @@ Chain clean_chain(int substeps = 10) {
   return c;
 }
 
-Command sine(double amp, double hz, double duration) {
+Command sine_command(double amp, double hz, double duration) {
   Command c;
   c.kind = Kind::sine;
   c.amp = amp;
@@ -65,7 +65,7 @@ double max_abs(const std::vector<double> &a) { return max_abs_diff(a, std::vecto
 
 TEST(RefgenIntegration, ConvergesAtOrderThreeOnAFiveHertzSine) {
   Specimen s;  // the paper's section 3.4 set, N = 15
-  const Command cmd = sine(1.0, 5.0, 0.6);
+  const Command cmd = sine_command(1.0, 5.0, 0.6);
   const Samples ref = run_record(s, cmd, clean_chain(64));
   double err[3];
   const int m[3] = {2, 4, 8};
@@ -99,7 +99,7 @@ TEST(RefgenChain, PreloadStartsRelaxedAtTheStaticLaw) {
   s.N = 7;
   Chain c = clean_chain(5);
   c.preload = -0.7;
-  const Samples r = run_record(s, sine(0.2, 1.0, 1.0), c);
+  const Samples r = run_record(s, sine_command(0.2, 1.0, 1.0), c);
   EXPECT_EQ(r.x_true[0], -0.7);
   EXPECT_NEAR(r.F_clean[0] / static_force(s, -0.7), 1.0, 1e-12);
   double lo = INFINITY, hi = -INFINITY;
@@ -108,7 +108,7 @@ TEST(RefgenChain, PreloadStartsRelaxedAtTheStaticLaw) {
   EXPECT_NEAR(hi, -0.5, 0.02);
   s.gap = Gap::held;
   s.half_gap = 0.05;
-  const Samples g = run_record(s, sine(0.2, 1.0, 0.5), c);
+  const Samples g = run_record(s, sine_command(0.2, 1.0, 0.5), c);
   EXPECT_NEAR(g.F_clean[0] / static_force(s, -0.65), 1.0, 1e-12);
 }
 
@@ -118,9 +118,9 @@ TEST(RefgenChain, CompressionPositiveLoadCellNegatesTheForce) {
   Specimen s;
   Chain c = clean_chain(5);
   c.offset = 3.0;
-  const Samples a = run_record(s, sine(0.5, 2.0, 0.5), c);
+  const Samples a = run_record(s, sine_command(0.5, 2.0, 0.5), c);
   c.force_sign = -1.0;
-  const Samples b = run_record(s, sine(0.5, 2.0, 0.5), c);
+  const Samples b = run_record(s, sine_command(0.5, 2.0, 0.5), c);
   for (size_t k = 0; k < a.F.size(); ++k) EXPECT_EQ(b.F_clean[k], -a.F_clean[k]);
   EXPECT_EQ(expected_word("compression_positive"), "none");
   EXPECT_EQ(expected_word("preload"), "none");
@@ -133,9 +133,9 @@ TEST(RefgenChain, ColoredNoiseKeepsItsLevelAndIsCorrelated) {
   Specimen s;
   Chain c;
   c.substeps = 5;
-  const Samples white = run_record(s, sine(0.5, 2.0, 8.0), c);
+  const Samples white = run_record(s, sine_command(0.5, 2.0, 8.0), c);
   c.noise_hz = 100.0;
-  const Samples red = run_record(s, sine(0.5, 2.0, 8.0), c);
+  const Samples red = run_record(s, sine_command(0.5, 2.0, 8.0), c);
   auto stats = [](const Samples &r, double &sd, double &rho) {
     double s2 = 0.0, s11 = 0.0;
     const size_t n = r.F.size();
@@ -162,9 +162,9 @@ TEST(RefgenChain, ColoredNoiseKeepsItsLevelAndIsCorrelated) {
 TEST(RefgenChain, ZeroDriftIsALinearRampOfTheForceZero) {
   Specimen s;
   Chain c = clean_chain(5);
-  const Samples a = run_record(s, sine(0.5, 2.0, 0.5), c);
+  const Samples a = run_record(s, sine_command(0.5, 2.0, 0.5), c);
   c.zero_drift = 8.0;
-  const Samples b = run_record(s, sine(0.5, 2.0, 0.5), c);
+  const Samples b = run_record(s, sine_command(0.5, 2.0, 0.5), c);
   for (size_t k = 0; k < a.F.size(); ++k)
     EXPECT_NEAR(b.F_clean[k] - a.F_clean[k], 8.0 * a.t[k] / 0.5, 1e-9);
   EXPECT_EQ(expected_word("zero_drift"), "unexplained");
@@ -253,7 +253,7 @@ TEST(RefgenEffects, MaxwellBranchRelaxesWithItsTime) {
 }
 
 TEST(RefgenEffects, RelaxationSpectrumRelaxesAsItsPronySeries) {
-  Scenario sc = make_scenario({"relaxation_spectrum"}, 3, 4.0);
+  refgen::Scenario sc = make_scenario({"relaxation_spectrum"}, 3, 4.0);
   const std::vector<Branch> &br = sc.specimen.branches;
   ASSERT_EQ(br.size(), 9u);  // 10 ms .. 100 s, two per decade
   Specimen plain = sc.specimen;
@@ -335,7 +335,7 @@ TEST(RefgenEffects, SlackStripCannotPush) {
 TEST(RefgenChain, DelayShiftsTheForceChannelOnly) {
   Specimen s;
   Chain c = clean_chain();
-  const Command cmd = sine(0.5, 3.0, 1.0);
+  const Command cmd = sine_command(0.5, 3.0, 1.0);
   const Samples a = run_record(s, cmd, c);
   c.delay = 0.004;
   const Samples b = run_record(s, cmd, c);
@@ -346,7 +346,7 @@ TEST(RefgenChain, DelayShiftsTheForceChannelOnly) {
 TEST(RefgenChain, DisplacementDelayShiftsTheDisplacementChannelOnly) {
   Specimen s;
   Chain c = clean_chain();
-  const Command cmd = sine(0.5, 3.0, 1.0);
+  const Command cmd = sine_command(0.5, 3.0, 1.0);
   const Samples a = run_record(s, cmd, c);
   c.disp_delay = 0.003;
   const Samples b = run_record(s, cmd, c);
@@ -358,7 +358,7 @@ TEST(RefgenChain, DisplacementDelayShiftsTheDisplacementChannelOnly) {
 TEST(RefgenChain, SpikesAreIsolatedSamplesOfTheRecordedForce) {
   Specimen s;
   Chain c = clean_chain();
-  const Command cmd = sine(0.5, 3.0, 4.0);
+  const Command cmd = sine_command(0.5, 3.0, 4.0);
   const Samples a = run_record(s, cmd, c);
   c.spikes = 50.0;
   c.spike_rate = 0.005;
@@ -375,7 +375,7 @@ TEST(RefgenChain, SpikesAreIsolatedSamplesOfTheRecordedForce) {
 }
 
 TEST(RefgenScenario, SeedFixesTheSpecimenAndEffectsOnlyAddTheirOwn) {
-  const Scenario a = make_scenario({"none"}, 7), b = make_scenario({"maxwell"}, 7);
+  const refgen::Scenario a = make_scenario({"none"}, 7), b = make_scenario({"maxwell"}, 7);
   EXPECT_EQ(a.specimen.K0, b.specimen.K0);
   EXPECT_EQ(a.chain.dt, b.chain.dt);
   EXPECT_TRUE(a.specimen.branches.empty());

@@ -23,6 +23,7 @@
 #include "offline/report/gnuplot_figure.h"
 #include "offline/report/paper_figures.h"
 #include "rt_bushing/rt_bushing.h"
+#include "text_file.h"
 
 namespace fs = std::filesystem;
 using namespace rtb;
@@ -30,23 +31,17 @@ using namespace rtb;
 namespace {
 
 using rtb_test::kRtb;
+using rtb_test::read_text;
 
 #define SKIP_WITHOUT_GNUPLOT()                                                         \
   if (!gnuplot_available())                                                            \
   GTEST_SKIP() << "gnuplot is not on PATH (Debian: apt-get install gnuplot-nox); "     \
                   "figure rendering not tested"
 
-class TempDir : public rtb_test::TempDir {
+class ReportTempDir : public rtb_test::TempDir {
  public:
-  TempDir() : rtb_test::TempDir("rtb_report_test") {}
+  ReportTempDir() : rtb_test::TempDir("rtb_report_test") {}
 };
-
-std::string read_bytes(const std::string &path) {
-  std::ifstream f(path, std::ios::binary);
-  std::stringstream ss;
-  ss << f.rdbuf();
-  return ss.str();
-}
 
 bool starts_with_png_signature(const std::string &bytes) {
   return bytes.size() > 8 && bytes.compare(0, 8, std::string("\x89PNG\r\n\x1a\n", 8)) == 0;
@@ -95,25 +90,25 @@ std::string with_path(const std::string &path_env) {
 
 TEST(ReportFigure, WritesPngAndRegeneratesByteIdentical) {
   SKIP_WITHOUT_GNUPLOT();
-  TempDir d;
+  ReportTempDir d;
   const std::string png = d.file("panels.png");
   render_png(png, sample_panels());
-  const std::string first = read_bytes(png), dat1 = read_bytes(d.file("panels.dat")),
-                    gp1 = read_bytes(d.file("panels.gp"));
+  const std::string first = read_text(png), dat1 = read_text(d.file("panels.dat")),
+                    gp1 = read_text(d.file("panels.gp"));
   EXPECT_TRUE(starts_with_png_signature(first)) << first.size() << " bytes";
   EXPECT_NE(gp1.find("set multiplot layout 1,2"), std::string::npos) << gp1;
   EXPECT_NE(gp1.find("set logscale x"), std::string::npos);
   render_png(png, sample_panels());
-  EXPECT_TRUE(read_bytes(png) == first) << "PNG differs when regenerated";
-  EXPECT_EQ(read_bytes(d.file("panels.dat")), dat1);
-  EXPECT_EQ(read_bytes(d.file("panels.gp")), gp1);
+  EXPECT_TRUE(read_text(png) == first) << "PNG differs when regenerated";
+  EXPECT_EQ(read_text(d.file("panels.dat")), dat1);
+  EXPECT_EQ(read_text(d.file("panels.gp")), gp1);
   // Only the three outputs, no temporary left behind.
   EXPECT_EQ(d.entries(), (std::vector<std::string>{"panels.dat", "panels.gp", "panels.png"}));
 }
 
 TEST(ReportFigure, FailedRenderLeavesNoPartialPngAndKeepsTheOldOne) {
   SKIP_WITHOUT_GNUPLOT();
-  TempDir d;
+  ReportTempDir d;
   std::vector<Figure> bad = sample_panels();
   bad[0].series[0].style = "no_such_plot_style";
   try {
@@ -129,14 +124,14 @@ TEST(ReportFigure, FailedRenderLeavesNoPartialPngAndKeepsTheOldOne) {
   // A failure over an existing figure leaves it intact.
   const std::string png = d.file("keep.png");
   render_png(png, sample_panels());
-  const std::string good = read_bytes(png);
+  const std::string good = read_text(png);
   EXPECT_THROW(render_png(png, bad), std::runtime_error);
-  EXPECT_TRUE(read_bytes(png) == good);
+  EXPECT_TRUE(read_text(png) == good);
   for (const std::string &e : d.entries()) EXPECT_EQ(e.find(".tmp"), std::string::npos) << e;
 }
 
 TEST(ReportFigure, MissingGnuplotIsReportedClearly) {
-  TempDir d;
+  ReportTempDir d;
   const std::string saved = with_path(d.path());  // an empty directory
   EXPECT_FALSE(gnuplot_available());
   std::string msg;
@@ -152,7 +147,7 @@ TEST(ReportFigure, MissingGnuplotIsReportedClearly) {
 }
 
 TEST(ReportFigure, RejectsBadInputBeforeWritingAnything) {
-  TempDir d;
+  ReportTempDir d;
   std::vector<Figure> p = sample_panels();
   EXPECT_THROW(render_png(d.file("a.png"), {}), std::invalid_argument);
   EXPECT_THROW(render_png(d.file("a.svg"), p), std::invalid_argument);
@@ -170,7 +165,7 @@ TEST(ReportFigure, RejectsBadInputBeforeWritingAnything) {
 // Series longer than kMaxPlotPoints are decimated by a stride, ends kept.
 TEST(ReportFigure, LongSeriesAreDecimated) {
   SKIP_WITHOUT_GNUPLOT();
-  TempDir d;
+  ReportTempDir d;
   Figure f;
   f.title = "long";
   Series s;
@@ -341,16 +336,16 @@ TEST(ReportPaperFigures, Figure9OppositeSecondStepRelaxesMore) {
 
 TEST(ReportPaperFigures, CliWritesFiguresAndMarkdownReproducibly) {
   SKIP_WITHOUT_GNUPLOT();
-  TempDir d;
+  ReportTempDir d;
   const std::string out = d.file("a/b");  // created by the command
   const std::string cmd = "'" + kRtb + "' paper-figures --quiet --out-dir '" + out + "'";
   ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
   const char *pngs[] = {"fig5_cells.png", "fig6_frequency_step.png", "fig8_step_rt_vs_sts.png",
                         "fig9_two_steps.png"};
-  const std::string md = read_bytes(out + "/paper_figures.md");
+  const std::string md = read_text(out + "/paper_figures.md");
   std::vector<std::string> first;
   for (const char *p : pngs) {
-    first.push_back(read_bytes(out + "/" + p));
+    first.push_back(read_text(out + "/" + p));
     EXPECT_TRUE(starts_with_png_signature(first.back())) << p;
     EXPECT_NE(md.find(std::string("](") + p + ")"), std::string::npos) << p;
   }
@@ -359,7 +354,7 @@ TEST(ReportPaperFigures, CliWritesFiguresAndMarkdownReproducibly) {
   write_paper_figures(d.file("again"), &md2);
   EXPECT_EQ(md, md2);
   for (size_t k = 0; k < 4; ++k)
-    EXPECT_TRUE(read_bytes(d.file("again/") + pngs[k]) == first[k]) << pngs[k];
+    EXPECT_TRUE(read_text(d.file("again/") + pngs[k]) == first[k]) << pngs[k];
 
   EXPECT_EQ(std::system(("'" + kRtb + "' paper-figures --help >/dev/null").c_str()), 0);
   EXPECT_NE(std::system(("'" + kRtb + "' paper-figures >/dev/null 2>&1").c_str()), 0);

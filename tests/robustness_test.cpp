@@ -18,18 +18,16 @@
 
 #include "rt_bushing/rt_bushing.h"
 #include "tests/random_configs.h"
+#include "test_numbers.h"
 
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr double kTwoPi = 6.283185307179586476925;
 constexpr double kSentinel = -12345.678;
 
+using ::same_bits;  // the doubles' (test_numbers.h), beside the state's below
 bool same_bits(const rtb_state &a, const rtb_state &b) {
   return std::memcmp(&a, &b, sizeof a) == 0;
 }
-bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
 rtb_params defaults(int model = RTB_MODEL_RT) {
   rtb_params p;

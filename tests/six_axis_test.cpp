@@ -28,7 +28,7 @@ rtb_bushing6_params mixed_params() {
   return p;
 }
 
-double input(int axis, int i) {
+double axis_input(int axis, int i) {
   return (0.2 + 0.1 * axis) * std::sin(2.0 * M_PI * (1.0 + axis) * i * 1e-3);
 }
 
@@ -44,7 +44,7 @@ TEST(SixAxis, EachChannelIsTheSingleAxisElementBitForBit) {
   for (int i = 1; i <= 300; ++i) {
     const double dt = i % 3 ? 1e-3 : 0.5e-3;  // variable step sizes
     double x[RTB_AXES], F[RTB_AXES], K[RTB_AXES];
-    for (int a = 0; a < RTB_AXES; ++a) x[a] = input(a, i);
+    for (int a = 0; a < RTB_AXES; ++a) x[a] = axis_input(a, i);
     rtb_bushing6_state trial;
     ASSERT_GE(rtb_bushing6_evaluate(&s, &p, nullptr, x, dt, &trial, F, K, &bad), 0);
     ASSERT_EQ(rtb_bushing6_commit(&s, &trial), RTB_OK);
@@ -72,7 +72,7 @@ TEST(SixAxis, StepEqualsEvaluateThenCommit) {
   b = a;
   for (int i = 1; i <= 50; ++i) {
     double x[RTB_AXES], Fa[RTB_AXES], Fb[RTB_AXES];
-    for (int k = 0; k < RTB_AXES; ++k) x[k] = input(k, i);
+    for (int k = 0; k < RTB_AXES; ++k) x[k] = axis_input(k, i);
     rtb_bushing6_state t;
     ASSERT_GE(rtb_bushing6_step(&a, &p, nullptr, x, 1e-3, Fa, nullptr), 0);
     ASSERT_GE(rtb_bushing6_evaluate(&b, &p, nullptr, x, 1e-3, &t, Fb, nullptr, nullptr), 0);

@@ -19,7 +19,7 @@
 
 namespace {
 
-constexpr double kC0 = 40.0;
+constexpr double kLawC0 = 40.0;
 
 // Work units per step of the paper's element with the given extensions on
 // BM_Extension's input (10 Hz, 1 mm sine with 10 um noise at 1 kHz, 2000
@@ -58,14 +58,14 @@ TEST(SmoothedInverse, OneEvaluationFromAnAccurateGuess) {
       for (double sv : {1e-3, 0.1, 1.0, 10.0, 30.0}) {
         const double v = sv / s;
         double d;
-        const double f = rtb_slaw_force(v, kC0, alpha, s, &d);
+        const double f = rtb_slaw_force(v, kLawC0, alpha, s, &d);
         int evals = 0;
         double D = 0.0;
         const double vi =
-            rtb_slaw_velocity_n(f, kC0, alpha, s, v * (1.0 + 1e-9), 80, 0.0, &evals, &D);
+            rtb_slaw_velocity_n(f, kLawC0, alpha, s, v * (1.0 + 1e-9), 80, 0.0, &evals, &D);
         EXPECT_EQ(evals, 1) << "alpha " << alpha << " s " << s << " sv " << sv;
         double di;
-        EXPECT_NEAR(rtb_slaw_force(vi, kC0, alpha, s, &di), f, 8 * DBL_EPSILON * f)
+        EXPECT_NEAR(rtb_slaw_force(vi, kLawC0, alpha, s, &di), f, 8 * DBL_EPSILON * f)
             << "alpha " << alpha << " s " << s << " sv " << sv;
         EXPECT_NEAR(D * di, 1.0, 1e-12);  // the slope moved to the returned point
       }
@@ -79,13 +79,13 @@ TEST(SmoothedInverse, ForceToleranceStopsEarlierWithinIt) {
     for (double s : {0.01, 1.0, 100.0})
       for (double sv : {1e-3, 0.1, 1.0, 10.0, 30.0}) {
         const double v = sv / s;
-        const double f = rtb_slaw_force(v, kC0, alpha, s, nullptr);
+        const double f = rtb_slaw_force(v, kLawC0, alpha, s, nullptr);
         const double ftol = 1e-6 * f;
         int e0 = 0, e1 = 0;
-        rtb_slaw_velocity_n(f, kC0, alpha, s, NAN, 80, 0.0, &e0, nullptr);
-        const double vt = rtb_slaw_velocity_n(f, kC0, alpha, s, NAN, 80, ftol, &e1, nullptr);
+        rtb_slaw_velocity_n(f, kLawC0, alpha, s, NAN, 80, 0.0, &e0, nullptr);
+        const double vt = rtb_slaw_velocity_n(f, kLawC0, alpha, s, NAN, 80, ftol, &e1, nullptr);
         EXPECT_LE(e1, e0);
-        EXPECT_LE(std::fabs(rtb_slaw_force(vt, kC0, alpha, s, nullptr) - f), ftol)
+        EXPECT_LE(std::fabs(rtb_slaw_force(vt, kLawC0, alpha, s, nullptr) - f), ftol)
             << "alpha " << alpha << " s " << s << " sv " << sv;
         with += e1;
         without += e0;

@@ -13,13 +13,12 @@
 
 #include "dashpot_law.h"
 #include "physics_helpers.h"
+#include "test_numbers.h"
 
 namespace {
 
 using rtbtest::kPi;
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // Forces of the stepper for x = 1 mm sin(2 pi t) + 0.1 mm sin(20 pi t) over
 // `seconds`; every step must succeed (RTB_OK: converged) with a finite force.

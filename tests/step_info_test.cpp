@@ -12,6 +12,7 @@
 
 #include "rt_bushing/rt_bushing.h"
 #include "tests/hard_cases.h"
+#include "test_numbers.h"
 
 #if defined(__SANITIZE_ADDRESS__)
 #define RTB_TEST_SANITIZED 1
@@ -23,7 +24,6 @@
 
 namespace {
 
-constexpr double kTwoPi = 6.283185307179586476925;
 
 rtb_params rt(int integrator = RTB_INTEGRATOR_SDIRK2) {
   rtb_params p;
@@ -32,10 +32,10 @@ rtb_params rt(int integrator = RTB_INTEGRATOR_SDIRK2) {
   return p;
 }
 
-double sine(int i, double dt) { return 0.8 * std::sin(kTwoPi * 5.0 * i * dt); }
+double step_sine(int i, double dt) { return 0.8 * std::sin(kTwoPi * 5.0 * i * dt); }
 
 // What NULL settings mean (rtb_settings_default).
-rtb_settings defaults() {
+rtb_settings default_settings() {
   rtb_settings set;
   rtb_settings_default(&set);
   return set;
@@ -51,13 +51,13 @@ TEST(StepInfo, ExVariantsEqualThePlainCallsBitForBit) {
   for (int i = 1; i <= 300; ++i) {
     double fa, fb, fe, dfe, dfp;
     rtb_step_info info;
-    const rtb_status sa = rtb_step(&a, &p, nullptr, sine(i, 1e-3), 1e-3, &fa);
-    const rtb_status se = rtb_evaluate_ex(&b, &p, nullptr, sine(i, 1e-3), 1e-3, &trial, &fe, &dfe, &info);
+    const rtb_status sa = rtb_step(&a, &p, nullptr, step_sine(i, 1e-3), 1e-3, &fa);
+    const rtb_status se = rtb_evaluate_ex(&b, &p, nullptr, step_sine(i, 1e-3), 1e-3, &trial, &fe, &dfe, &info);
     double fp;
     rtb_state trial2;
-    ASSERT_EQ(rtb_evaluate(&b, &p, nullptr, sine(i, 1e-3), 1e-3, &trial2, &fp, &dfp), se);
+    ASSERT_EQ(rtb_evaluate(&b, &p, nullptr, step_sine(i, 1e-3), 1e-3, &trial2, &fp, &dfp), se);
     ASSERT_EQ(std::memcmp(&dfe, &dfp, sizeof dfe), 0) << i;
-    ASSERT_EQ(rtb_step_ex(&b, &p, nullptr, sine(i, 1e-3), 1e-3, &fb, nullptr), sa);
+    ASSERT_EQ(rtb_step_ex(&b, &p, nullptr, step_sine(i, 1e-3), 1e-3, &fb, nullptr), sa);
     ASSERT_EQ(std::memcmp(&a, &b, sizeof a), 0) << i;
     ASSERT_EQ(std::memcmp(&trial, &b, sizeof a), 0) << i;
     ASSERT_EQ(std::memcmp(&fa, &fb, sizeof fa), 0) << i;
@@ -77,7 +77,7 @@ TEST(StepInfo, CountsMatchTheStateAndTheTolerance) {
       double f;
       rtb_step_info info;
       std::memset(&info, 0x7f, sizeof info);
-      const rtb_status st = rtb_step_ex(&s, &p, nullptr, sine(i, 1e-3), 1e-3, &f, &info);
+      const rtb_status st = rtb_step_ex(&s, &p, nullptr, step_sine(i, 1e-3), 1e-3, &f, &info);
       ASSERT_GE(st, 0);
       EXPECT_EQ(info.stages, integ == RTB_INTEGRATOR_SDIRK2 ? 2 : 1);
       EXPECT_EQ(info.iterations, s.last_iterations) << i;
@@ -85,7 +85,7 @@ TEST(StepInfo, CountsMatchTheStateAndTheTolerance) {
       EXPECT_EQ(info.clearance_residual, 0.0);
       EXPECT_GE(info.backtracks, 0);
       if (st == RTB_OK) {
-        EXPECT_LE(info.residual, defaults().tol) << i;
+        EXPECT_LE(info.residual, default_settings().tol) << i;
         ++ok;
       }
     }
@@ -109,7 +109,7 @@ TEST(StepInfo, IterationCapIsReportedWithItsResidual) {
     for (int i = 1; i <= 100; ++i) {
       double f;
       rtb_step_info info;
-      const rtb_status st = rtb_step_ex(&s, &p, &set, sine(i, 1e-3), 1e-3, &f, &info);
+      const rtb_status st = rtb_step_ex(&s, &p, &set, step_sine(i, 1e-3), 1e-3, &f, &info);
       ASSERT_GE(st, 0);
       ASSERT_TRUE(std::isfinite(f));
       if (st == RTB_NOT_CONVERGED) {
@@ -138,7 +138,7 @@ TEST(StepInfo, HardStepBacktracksAndReportsNonConvergence) {
   EXPECT_EQ(info.iterations, 40);
   EXPECT_LT(info.work, RTB_STEP_WORK);
   EXPECT_GT(info.backtracks, 0);
-  EXPECT_GT(info.residual, defaults().tol);
+  EXPECT_GT(info.residual, default_settings().tol);
   EXPECT_TRUE(std::isfinite(f));
   // With room for 100 iterations (and twice the work budget) it converges.
   rtb_settings set;
@@ -233,7 +233,7 @@ TEST(StepInfo, ClearanceIterationsAndResidual) {
   ASSERT_EQ(rtb_state_init(&s, &p, 0.0), RTB_OK);
   int free_steps = 0, contact_steps = 0;
   for (int i = 1; i <= 400; ++i) {
-    const double x = sine(i, 1e-3);
+    const double x = step_sine(i, 1e-3);
     double f;
     rtb_step_info info;
     ASSERT_EQ(rtb_step_ex(&s, &p, nullptr, x, 1e-3, &f, &info), RTB_OK) << i;
@@ -245,7 +245,7 @@ TEST(StepInfo, ClearanceIterationsAndResidual) {
       EXPECT_EQ(info.clearance_residual, 0.0);
     } else {
       ++free_steps;
-      const double tol = defaults().tol;
+      const double tol = default_settings().tol;
       EXPECT_LE(info.clearance_residual, tol) << i;
       // The free end carries no load: F within the documented tolerance
       // tol (K0 + Kpa) (|xb| + g).

@@ -12,10 +12,10 @@
 #include "rtb_internal.h"
 #include "tests/physics_helpers.h"
 #include "tests/stage_residual.h"
+#include "test_numbers.h"
 
 namespace {
 
-constexpr double kTwoPi = 6.283185307179586476925;
 
 // The section 3.4 element on the benchmark's 1 mm, 10 Hz sine: the deep
 // cells lock (v ~ 1e-26 and below there), and every stage still solves the

@@ -13,10 +13,10 @@
 #include <string>
 
 #include "rt_bushing/rt_bushing.h"
+#include "test_numbers.h"
 
 namespace {
 
-constexpr double kTwoPi = 6.283185307179586476925;
 
 struct Tally {
   int checked = 0, kinks = 0, free_end = 0, contact = 0;

@@ -13,7 +13,7 @@ namespace rtb {
 
 namespace {
 
-struct Series {
+struct PooledRecords {
   std::vector<double> t, e, x, F;  // per record, concatenated with offsets
   std::vector<size_t> starts;      // record boundaries
   std::vector<char> held;          // the displacement is at rest around the sample
@@ -37,7 +37,7 @@ std::vector<char> held_samples(const std::vector<double> &x) {
 
 // Energy of s in record r (mean removed) and the part of it one sinusoid
 // of frequency f explains (least squares).
-void record_line(const Series &S, const std::vector<double> &s, double f, size_t r,
+void record_line(const PooledRecords &S, const std::vector<double> &s, double f, size_t r,
                  double *explained, double *total) {
   const size_t a = S.starts[r], b = S.starts[r + 1];
   double mean = 0.0;
@@ -60,7 +60,7 @@ void record_line(const Series &S, const std::vector<double> &s, double f, size_t
 
 // Share of the energy of s, over all records, that one sinusoid of
 // frequency f per record explains.
-double sine_share(const Series &S, const std::vector<double> &s, double f) {
+double sine_share(const PooledRecords &S, const std::vector<double> &s, double f) {
   double explained = 0.0, total = 0.0;
   for (size_t r = 0; r + 1 < S.starts.size(); ++r) {
     double ex, tot;
@@ -77,7 +77,7 @@ double sine_share(const Series &S, const std::vector<double> &s, double f) {
 // (refgen inertia_s17: a 30 Hz line of the residual, all of it in the
 // 30 Hz held-out sine, was read as "a line where the displacement has no
 // content", a disturbance on the force channel).
-double input_share_at_line(const Series &S, double f) {
+double input_share_at_line(const PooledRecords &S, double f) {
   double weighted = 0.0, line = 0.0;
   for (size_t r = 0; r + 1 < S.starts.size(); ++r) {
     double ee, et, xe, xt;
@@ -107,7 +107,7 @@ double feature_share(const std::vector<double> &e, const std::vector<double> &g)
 // temperature or age differs between tests shows as records that disagree
 // on the force scale, which one set of parameters cannot follow; *spread is
 // the largest minus the smallest per-record scale a (a fraction).
-double record_scale_share(const Series &S, const std::vector<double> &use, double *spread) {
+double record_scale_share(const PooledRecords &S, const std::vector<double> &use, double *spread) {
   double explained = 0.0, total = 0.0, lo = 0.0, hi = 0.0;
   bool first = true;
   for (size_t r = 0; r + 1 < S.starts.size(); ++r) {
@@ -142,7 +142,7 @@ namespace diag {
 ResidualSignature residual_signature(const ExtModel &m, const std::vector<Record> &recs,
                                      const std::vector<RecordResiduals> &where,
                                      const MisfitOptions &opt) {
-  Series S;
+  PooledRecords S;
   ExtFitSpec none;
   none.free.clear();
   double fs = 0.0, T = 0.0;

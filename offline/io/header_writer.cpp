@@ -7,10 +7,10 @@
 #include "io/header_writer.h"
 
 #include <cmath>
-#include <cstdio>
 #include <cstring>
 #include <string>
 
+#include "io/number_text.h"
 #include "io/params_json.h"
 
 namespace rtb {
@@ -79,14 +79,9 @@ std::string comment_safe(const std::string &s) {
 
 namespace {
 
-std::string fmt(const char *f, double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, f, v);
-  return buf;
-}
-std::string hexf(double v) { return fmt("%a", v); }
-std::string dec(double v) { return fmt("%.17g", v); }
-std::string short_dec(double v) { return fmt("%.6g", v); }
+std::string hexf(double v) { return number_text("%a", v); }
+std::string dec(double v) { return number_text("%.17g", v); }
+std::string short_dec(double v) { return number_text("%.6g", v); }
 
 struct Field {
   const char *name;
@@ -192,7 +187,7 @@ std::string emit_parameter_header(const rtb_params &p, const HeaderInfo &info) {
   if (std::isfinite(info.error)) {
     line(" *");
     line(" * Error: " + comment_safe(info.error_label) + " = " + short_dec(info.error) + " (" +
-         fmt("%.4g", 100.0 * info.error) + " %)");
+         number_text("%.4g", 100.0 * info.error) + " %)");
   }
   if (!info.std_devs.empty()) {
     line(" *");

@@ -19,7 +19,6 @@
 namespace rtb {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 // ------------------------------------------------------------------ driving
 
@@ -212,7 +211,7 @@ FrequencyStudy frequency_study() {
   const long spc = 2000;  // converged to 1e-5 in Ksec (tests/physics_test.cpp)
   for (double f : r.freq) {
     const double A = r.amplitude;
-    const Input sine = [A, f](double t) { return A * std::sin(2.0 * kPi * f * t); };
+    const Input sine = [A, f](double t) { return A * std::sin(2.0 * M_PI * f * t); };
     r.loops.push_back(tail(run(p, sine, uniform_grid(4.0 / f, 4 * spc)), spc));
     // Section 3.4: secant stiffness = maximum load / maximum displacement.
     r.secant.push_back(max_of(r.loops.back().F) / max_of(r.loops.back().x));

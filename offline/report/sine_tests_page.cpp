@@ -12,6 +12,7 @@
 #include "identify/identify.h"
 #include "identify/sts_init.h"
 #include "io/atomic_file.h"
+#include "io/number_text.h"
 #include "model/parallel_for.h"
 #include "preprocess/preprocess.h"
 #include "report/dynstiff_figure.h"
@@ -44,11 +45,6 @@ std::vector<std::string> set_files(const SineSet &s) {
   return out;
 }
 
-std::string fmt(const char *f, double v) {
-  char b[64];
-  std::snprintf(b, sizeof b, f, v);
-  return b;
-}
 
 DynStiffRow row_of(const RecordDynStiff &r, const ComplexStiffness &k) {
   return DynStiffRow{r.freq, r.amp, k.stiffness, k.loss_angle_deg, 1.0};
@@ -118,14 +114,14 @@ void write_sine_tests_page(const std::string &data_dir, const std::string &out_d
         "models (N = 15) driven by the same record and analysed over the same window:\n\n"
      << "* **time fit**: `rtb identify` on the friction-damper study's three fit records "
         "(d2 36 lb: 0.25 Hz 1.5 in, 0.5 Hz 1 in, 1 Hz 0.5 in; 20 Hz low-pass), error sqrt(J/J0) "
-     << fmt("%.1f", 100 * time_fit.error) << " %, "
+     << number_text("%.1f", 100 * time_fit.error) << " %, "
      << (table_start_won ? "started from the table fit (from the STS start it ends at "
                          : "from the STS start (from the table fit it ends at ")
-     << fmt("%.1f", 100 * (table_start_won ? sts_error : from_table.error)) << " %);\n"
+     << number_text("%.1f", 100 * (table_start_won ? sts_error : from_table.error)) << " %);\n"
      << "* **table fit**: `rtb identify --dynstiff` on the 10-row measured table of the d2 36 lb "
         "set (what a user with only a data sheet would do): rms "
-     << fmt("%.2f", 100 * tab.rms_stiffness_rel) << " % in stiffness, "
-     << fmt("%.2f", tab.rms_loss_deg) << " deg in loss angle over its own rows.\n\n"
+     << number_text("%.2f", 100 * tab.rms_stiffness_rel) << " % in stiffness, "
+     << number_text("%.2f", tab.rms_loss_deg) << " deg in loss angle over its own rows.\n\n"
      << "A pure friction loop (a force +-Fs switching with the velocity) has F1 = (4/pi) Fs "
         "in phase with the velocity: |K*| = 4 Fs / (pi A), falling as 1/A, and a loss angle of "
         "90 deg; elastic parts and the clearance after each reversal lower the angle. The "
@@ -136,9 +132,9 @@ void write_sine_tests_page(const std::string &data_dir, const std::string &out_d
   md << "| parameter | time fit | table fit | table fit std. dev. |\n|---|---|---|---|\n";
   for (size_t i = 0; i < to.free.size(); ++i) {
     const ParamId id = to.free[i];
-    md << "| " << param_name(id) << " | " << fmt("%.4g", param_get(time_fit.params, id)) << " | "
-       << fmt("%.4g", param_get(tab.fit.params, id)) << " | "
-       << (tab.fit.uncertainty.valid ? fmt("%.3g", tab.fit.uncertainty.stddev[(Eigen::Index)i]) : "n/a")
+    md << "| " << param_name(id) << " | " << number_text("%.4g", param_get(time_fit.params, id)) << " | "
+       << number_text("%.4g", param_get(tab.fit.params, id)) << " | "
+       << (tab.fit.uncertainty.valid ? number_text("%.3g", tab.fit.uncertainty.stddev[(Eigen::Index)i]) : "n/a")
        << " |\n";
   }
   md << "\n";
@@ -150,12 +146,12 @@ void write_sine_tests_page(const std::string &data_dir, const std::string &out_d
     std::vector<DynStiffRow> m, tf, tb;
     for (size_t k = 0; k < meas[s].size(); ++k) {
       const RecordDynStiff &r = meas[s][k];
-      md << "| " << base_of(r.path) << " | " << fmt("%.3f", r.freq) << " | " << fmt("%.3f", r.amp)
-         << " | " << r.periods << " | " << fmt("%.3f", r.measured.stiffness) << " | "
-         << fmt("%.1f", r.measured.loss_angle_deg) << " | " << fmt("%.3f", time_pred[s][k].stiffness)
-         << " | " << fmt("%.1f", time_pred[s][k].loss_angle_deg) << " | "
-         << fmt("%.3f", tab_pred[s][k].stiffness)
-         << " | " << fmt("%.1f", tab_pred[s][k].loss_angle_deg) << " |\n";
+      md << "| " << base_of(r.path) << " | " << number_text("%.3f", r.freq) << " | " << number_text("%.3f", r.amp)
+         << " | " << r.periods << " | " << number_text("%.3f", r.measured.stiffness) << " | "
+         << number_text("%.1f", r.measured.loss_angle_deg) << " | " << number_text("%.3f", time_pred[s][k].stiffness)
+         << " | " << number_text("%.1f", time_pred[s][k].loss_angle_deg) << " | "
+         << number_text("%.3f", tab_pred[s][k].stiffness)
+         << " | " << number_text("%.1f", tab_pred[s][k].loss_angle_deg) << " |\n";
       m.push_back(row_of(r, r.measured));
       tf.push_back(row_of(r, time_pred[s][k]));
       tb.push_back(row_of(r, tab_pred[s][k]));
@@ -173,10 +169,10 @@ void write_sine_tests_page(const std::string &data_dir, const std::string &out_d
   write_file_atomic(out_dir + "/friction_damper_sine.md", md.str());
   std::ostringstream tm;
   tm << "# Friction damper sine tests: wall times\n\n| step | s |\n|---|---|\n"
-     << "| table identification (10 rows), with the measurement | " << fmt("%.1f", t_table) << " |\n"
-     << "| time-record identifications (two starts) | " << fmt("%.1f", t_time) << " |\n"
+     << "| table identification (10 rows), with the measurement | " << number_text("%.1f", t_table) << " |\n"
+     << "| time-record identifications (two starts) | " << number_text("%.1f", t_time) << " |\n"
      << "| whole page | "
-     << fmt("%.1f", std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count())
+     << number_text("%.1f", std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count())
      << " |\n";
   write_file_atomic(out_dir + "/friction_damper_sine_timings.md", tm.str());
 }

@@ -2,11 +2,11 @@
 // figures of one real-data study (numbers from run_study()).
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <sstream>
 
 #include "diagnose/extended_fit.h"
 #include "io/atomic_file.h"
+#include "io/number_text.h"
 #include "report/gnuplot_figure.h"
 #include "report/study.h"
 
@@ -14,13 +14,8 @@ namespace rtb {
 
 namespace {
 
-std::string fmt(const char *f, double v) {
-  char b[64];
-  std::snprintf(b, sizeof b, f, v);
-  return b;
-}
-std::string g4(double v) { return std::isfinite(v) ? fmt("%.4g", v) : std::string("n/a"); }
-std::string pc(double v) { return std::isfinite(v) ? fmt("%.2f", 100.0 * v) : std::string("n/a"); }
+std::string g4(double v) { return std::isfinite(v) ? number_text("%.4g", v) : std::string("n/a"); }
+std::string pc(double v) { return std::isfinite(v) ? number_text("%.2f", 100.0 * v) : std::string("n/a"); }
 
 std::vector<double> predict(const ExtModel &m, const Record &rec, const SimOptions &sim) {
   Eigen::VectorXd F;
@@ -65,8 +60,8 @@ std::string errors_table(const StudyResult &r) {
        "NRMSE extended % |\n|---|---|---|---|---|---|\n";
   for (const FileFigures &f : r.files)
     o << "| " << base_of(f.path) << " | " << (f.validation ? "validation" : "fit") << " | "
-      << pc(f.err_base) << " | " << pc(f.err_ext) << " | " << fmt("%.2f", f.nrmse_base) << " | "
-      << fmt("%.2f", f.nrmse_ext) << " |\n";
+      << pc(f.err_base) << " | " << pc(f.err_ext) << " | " << number_text("%.2f", f.nrmse_base) << " | "
+      << number_text("%.2f", f.nrmse_ext) << " |\n";
   o << "| **all fit records** | fit | **" << pc(r.err_fit_base) << "** | **" << pc(r.err_fit_ext)
     << "** | | |\n| **all validation records** | validation | **" << pc(r.err_val_base)
     << "** | **" << pc(r.err_val_ext) << "** | | |\n";
@@ -80,8 +75,8 @@ std::string candidates_table(const DiagnoseResult &D) {
   for (const CandidateOutcome &c : D.candidates) {
     const bool j = c.joint;
     o << "| " << display_name(c.cand) << " | " << (j ? pc(c.fit.error) : "-") << " | "
-      << (j ? pc(c.error_holdout) : "-") << " | " << (j ? fmt("%.4g", c.dbic) : "-") << " | "
-      << (j ? fmt("%.3g", c.amplitude_z) : "-") << " | " << (j ? fmt("%.0f%%", 100 * c.gain) : "-")
+      << (j ? pc(c.error_holdout) : "-") << " | " << (j ? number_text("%.4g", c.dbic) : "-") << " | "
+      << (j ? number_text("%.3g", c.amplitude_z) : "-") << " | " << (j ? number_text("%.0f%%", 100 * c.gain) : "-")
       << " | " << (c.eligible ? "eligible" : c.why)
       << (c.origin.empty() ? std::string() : " (" + c.origin + ")") << " |\n";
   }
@@ -97,7 +92,7 @@ std::string signatures(const DiagnoseResult &D) {
       << g4(rr.rms_elsewhere) << "; best explained by";
     for (size_t k = 0; k < rr.signatures.size() && k < 3; ++k)
       o << (k ? "," : "") << " " << rr.signatures[k].name << " ("
-        << fmt("%.0f%%", 100 * rr.signatures[k].explained) << ")";
+        << number_text("%.0f%%", 100 * rr.signatures[k].explained) << ")";
     o << "\n";
   }
   return o.str();
@@ -209,8 +204,8 @@ void write_study_report(const StudySpec &spec, const StudyResult &r, const std::
   tm << "# " << spec.title << ": wall times\n\nThis machine, `make report`; these differ from run "
         "to run, unlike every other generated file.\n\n"
      << "| step | s |\n|---|---|\n| baseline identification | "
-     << fmt("%.1f", D.baseline_fit.wall_seconds) << " |\n| diagnosis (all candidates) | "
-     << fmt("%.1f", D.wall_seconds) << " |\n| whole study | " << fmt("%.1f", r.wall_seconds) << " |\n";
+     << number_text("%.1f", D.baseline_fit.wall_seconds) << " |\n| diagnosis (all candidates) | "
+     << number_text("%.1f", D.wall_seconds) << " |\n| whole study | " << number_text("%.1f", r.wall_seconds) << " |\n";
   write_file_atomic(dir + "/" + spec.name + "_timings.md", tm.str());
 }
 

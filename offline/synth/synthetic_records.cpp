@@ -11,13 +11,12 @@
 namespace rtb {
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
 
 double input_at(const InputSpec &in, double t) {
   const double A = in.amplitude, f = in.frequency;
   switch (in.kind) {
-    case InputKind::Triangle: return A * (2.0 / kPi) * std::asin(std::sin(2 * kPi * f * t));
-    case InputKind::Sine: return A * std::sin(2 * kPi * f * t);
+    case InputKind::Triangle: return A * (2.0 / M_PI) * std::asin(std::sin(2 * M_PI * f * t));
+    case InputKind::Sine: return A * std::sin(2 * M_PI * f * t);
     case InputKind::Step: {
       const double u = (t - in.step_at) / in.rise;
       return A * std::min(1.0, std::max(0.0, u));
@@ -25,8 +24,8 @@ double input_at(const InputSpec &in, double t) {
     case InputKind::MultiSine:
       // All components start at zero, like the other inputs (a record that
       // starts away from rest would be ramped in by the fitting tools).
-      return A * (0.5 * std::sin(2 * kPi * f * t) + 0.3 * std::sin(2 * kPi * 2.7 * f * t) +
-                  0.2 * std::sin(2 * kPi * 7.3 * f * t));
+      return A * (0.5 * std::sin(2 * M_PI * f * t) + 0.3 * std::sin(2 * M_PI * 2.7 * f * t) +
+                  0.2 * std::sin(2 * M_PI * 7.3 * f * t));
   }
   return 0.0;
 }
