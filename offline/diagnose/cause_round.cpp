@@ -559,8 +559,9 @@ void fit_branch_rival(std::vector<CandidateOutcome> &out, const Current &cur, co
   start.p.maxwell_tau = std::max(spectrum_log_mean_time(p), 2.0 * cx.sc.dt);
   std::vector<Candidate> with = cur.causes;
   with.push_back(branch->cand);
-  rival.fit.J = INFINITY;  // any finite fit is kept; else the round's outcome stands
-  if (!refit_if_lower(rival, start, with, cx, "the spectrum's log-mean time")) return;
+  ExtFitResult f;  // any finite fit is kept; else the round's outcome stands
+  if (!fit_from(start, with, cx, &f) || !(f.J < INFINITY)) return;
+  rival.fit = f;
   rival.joint = true;
   judge_anew(rival, cur, cx, min_gain);
   if (!cx.opt.quiet)

@@ -59,13 +59,18 @@ IdentifyResult baseline_fit(const std::vector<Record> &fit, const DiagnoseOption
   return alt.error < opt.friction_start_margin * best.error ? alt : best;
 }
 
-// True when an eligible word of the round takes the records to within
-// floor_ratio of their noise floor, fit and selection records alike: the
-// round has found what the diagnosis would stop at.
+// True when errors on the fit and the selection records are both within
+// floor_ratio of their noise floors: what the diagnosis stops at.
+static bool within_floor(double error_fit, double error_sel, double floor_fit, double floor_sel,
+                         const DiagnoseOptions &opt) {
+  return error_sel <= opt.floor_ratio * floor_sel && error_fit <= opt.floor_ratio * floor_fit;
+}
+
+// True when an eligible word of the round takes the records to the floor:
+// the round has found what the diagnosis would stop at.
 static bool round_reaches_floor(const std::vector<CandidateOutcome> &round, const Context &cx) {
   for (const CandidateOutcome &co : round)
-    if (co.eligible && co.error_holdout <= cx.opt.floor_ratio * cx.floor_sel &&
-        co.fit.error <= cx.opt.floor_ratio * cx.floor_fit)
+    if (co.eligible && within_floor(co.fit.error, co.error_holdout, cx.floor_fit, cx.floor_sel, cx.opt))
       return true;
   return false;
 }
@@ -136,8 +141,7 @@ Current baseline_and_first_round(Context &cx, DiagnoseResult &R,
 }
 
 bool above_floor(const Current &c, const DiagnoseResult &R, const DiagnoseOptions &opt) {
-  return c.error_holdout > opt.floor_ratio * R.floor.error_holdout ||
-         c.error_fit > opt.floor_ratio * R.floor.error_fit;
+  return !within_floor(c.error_fit, c.error_holdout, R.floor.error_fit, R.floor.error_holdout, opt);
 }
 
 // Stages 5b-5d for the round's best candidate: accept it, refit, reject it
