@@ -6,17 +6,14 @@
 #include <cstdio>
 
 #include "diagnose/diagnose_stages.h"
+#include "io/number_text.h"
 
 namespace rtb {
 namespace diag {
 
 namespace {
 
-std::string pct(double e) {
-  char b[64];
-  std::snprintf(b, sizeof b, "%.2f%%", 100.0 * e);
-  return b;
-}
+std::string pct(double e) { return number_text("%.2f%%", 100.0 * e); }
 
 }  // namespace
 

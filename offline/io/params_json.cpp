@@ -11,10 +11,10 @@
 #include "io/params_json.h"
 
 #include <cmath>
-#include <cstdio>
 #include <string>
 
 #include "io/atomic_file.h"
+#include "io/number_text.h"
 
 namespace rtb {
 namespace {
@@ -51,11 +51,7 @@ bool required(const Key &k, int model) {
   return n == "Ff";
 }
 
-std::string num(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
-}
+std::string num(double v) { return number_text("%.17g", v); }
 
 std::string type_name(const nlohmann::json &j) { return j.type_name(); }
 

@@ -14,6 +14,7 @@
 #include <stdexcept>
 
 #include "io/atomic_file.h"
+#include "io/number_text.h"
 #include "rtb_offline.h"
 
 namespace rtb {
@@ -62,9 +63,7 @@ void append_number(std::string &out, double v) {
     out += "NaN";
     return;
   }
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
-  out += buf;
+  out += number_text("%.6g", v);
 }
 
 // Indices of the points written for a series of n points (see kMaxPlotPoints).
