@@ -39,7 +39,10 @@ extern "C" rtb_status rtb_sts_solve_capped(const rtb_params *p, const rtb_real *
   if (n < 1 || n > RTB_MAX_CELLS) return RTB_ERR_STATE;
   if (max_iters < 1) max_iters = 1;
   const rtb_real Kpa = p->Kpa, Kr = p->Kr;
-  rtb_real r[RTB_MAX_CELLS], dy[RTB_MAX_CELLS], f[RTB_MAX_CELLS];
+  /* r zeroed: rtb_chain_apply writes its first n entries, which GCC 12 at
+   * -O3 -march=x86-64-v4 (or native on an AVX-512 host) cannot see, and the
+   * library builds with -Werror. */
+  rtb_real r[RTB_MAX_CELLS] = {0}, dy[RTB_MAX_CELLS], f[RTB_MAX_CELLS];
   int act[RTB_MAX_CELLS]; /* -1 sliding down, 0 stuck, +1 sliding up */
   /* r = b - K y_old: the friction forces if nothing slid (the elastic trial). */
   rtb_chain_apply(n, Kpa, Kr, y_old, r);
