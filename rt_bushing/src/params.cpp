@@ -66,8 +66,14 @@ static rtb_status check_pairs(const rtb_params *p, const char **field) {
    * static stiffness at large strain); the law at large |x| may then fall,
    * except for a slack specimen: its floating end needs a force that grows
    * again above the input (a root to float to), so K0 + chain >= 0 there. */
-  const rtb_real chain = chain_static(p);
   const rtb_real sat = p->sat_disp > 0.0 && p->slack == 0.0 ? p->sat_force / p->sat_disp : 0.0;
+  /* The chain's static stiffness (>= 0) costs three dependent divisions,
+   * and every step checks its parameters: it decides a rule only where
+   * K0 + sat < 0 (rounded addition is monotone, so K0 + chain + sat >= 0
+   * follows from K0 + sat >= 0) or an asymmetry is set (|0| <= the tangent's
+   * positive part always holds). */
+  const bool chain_decides = !(p->K0 + sat >= 0.0) || p->k_asym != 0.0;
+  const rtb_real chain = chain_decides ? chain_static(p) : 0.0;
   /* a slack end floating with a bounded relaxing force g R needs a law that
    * still grows: K0 >= 0 and |k_asym| <= K0 there */
   const int grows = p->slack != 0.0 && p->relax_width > 0.0;
