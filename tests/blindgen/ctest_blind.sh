@@ -79,6 +79,11 @@
 #                              off (Kr 0), beside a degressive cubic that
 #                              kept it (the cubic, before session 49's
 #                              refit from the rival's core).
+#   relaxation_spectrum:14     a spectrum whose fit from the screen kept
+#                              the baseline's soft cells and a near-friction
+#                              dashpot, and lost to a Maxwell branch by the
+#                              fit misfit (`maxwell`, a wrong word, before
+#                              session 52's restart with stiffer cells).
 # Exit 77 (ctest: skipped) without numpy and scipy (python3-numpy,
 # python3-scipy; `make deps` installs them).
 set -u
