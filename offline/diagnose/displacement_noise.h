@@ -7,8 +7,10 @@
 // would both hide an inertia term and bias its fit towards zero.
 // When the displacement noise matters, the model input is the displacement
 // passed through a zero-phase 4th-order Butterworth low-pass at the records'
-// bandwidth: the cut-off is halved from fs/5 while what it removes is still
-// white noise (down to fs/200), each record at its own. One cut-off for all
+// bandwidth: of the cut-offs fs/5, fs/10, ... down to fs/200, each record
+// takes the lowest whose filtered displacement's estimated error (Stein's
+// unbiased risk estimate: the noise it passes against the signal it takes)
+// is within one standard error of the least. One cut-off for all
 // (the widest any record needs) left the slow records the fast one's
 // acceleration noise, which shrinks a fitted mass (errors in variables:
 // refgen inertia_s17 at 500 Hz, a 30 Hz held-out sine needing 100 Hz, the
