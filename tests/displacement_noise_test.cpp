@@ -56,10 +56,10 @@ TEST(DisplacementDenoise, CutOffFollowsTheRecordsBandwidth) {
 // The cut-off minimises the filtered displacement's estimated error (SURE),
 // not the noise removed alone: a 2 Hz, 1 mm sine with a 0.09 mm, 10 Hz
 // component (the top of a servo's band) and 20 um of noise at 500 Hz. The
-// rule before took 12.5 Hz, where the filter also takes ~0.45 sigma_x of the
-// 10 Hz component (0.47-0.51 sigma_x off the true displacement over six
-// noise draws); 25 Hz passes 0.32 sigma_x of noise and keeps the component
-// (0.27-0.32 sigma_x).
+// rule before took 12.5 Hz in each of these draws, where the filter also
+// takes ~0.45 sigma_x of the 10 Hz component (0.47-0.51 sigma_x off the true
+// displacement in a numpy prototype of six draws); 25 Hz passes 0.32
+// sigma_x of noise and keeps the component (0.27-0.32 sigma_x there).
 TEST(DisplacementDenoise, CutOffMinimisesTheFilteredDisplacementsError) {
   for (unsigned seed = 1; seed <= 4; ++seed) {
     std::mt19937 rng(seed);

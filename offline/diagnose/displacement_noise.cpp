@@ -58,16 +58,16 @@ double record_cutoff(const Record &r, double dt, double sigma) {
   const double fs = 1.0 / dt;
   std::vector<std::pair<double, double>> risk;  // (fc, estimated error), fc falling
   double least = INFINITY;
-  for (double fc = 0.2 * fs; fc >= fs / 200.0 * (1.0 - 1e-12); fc /= 2.0) {
+  for (double fc = 0.2 * fs; fc >= fs / 200.0; fc /= 2.0) {
     risk.emplace_back(fc, removed_variance(r.x, dt, fc) -
                               sigma * sigma * (1.0 - 2.0 * self_weight(dt, fc)));
     least = std::min(least, risk.back().second);
   }
   const double se = sigma * sigma * std::sqrt(2.0 / (double)r.x.size());
-  double fc = risk.front().first;
+  double lowest = 0.0;  // the last within least + se: the lowest, since fc falls
   for (const auto &fr : risk)
-    if (fr.second <= least + se) fc = fr.first;
-  return fc;
+    if (fr.second <= least + se) lowest = fr.first;
+  return lowest;
 }
 }  // namespace
 
