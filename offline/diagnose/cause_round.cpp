@@ -883,15 +883,25 @@ static bool takes_most_of(double big, double small, double floor) {
 static bool no_worse(const CandidateOutcome &a, const CandidateOutcome &b) {
   return a.error_holdout_trimmed <= b.error_holdout_trimmed && a.fit.error <= b.fit.error;
 }
+// A spring that saturates within the stroke differs from the cubic where
+// the records reach furthest; the fit records, which hold the largest
+// strokes, then decide, and held out the two need only tie within
+// `parsimony` (blindgen inertia+softening_s54, a tanh law: the softening
+// 4.584% fit against the cubic's 4.601%, held out 4.922% against 4.875%;
+// wherever the law was a cubic, refgen's seeds 11, 52 and 53, the cubic
+// fitted better).
+static bool saturating_spring_fits(const CandidateOutcome &spring, const CandidateOutcome &cubic,
+                                   const SelectionScales &sc, double parsimony) {
+  const double d = spring.fit.model.p.sat_disp;
+  return d > 0.0 && d <= sc.stroke && spring.fit.error <= cubic.fit.error &&
+         spring.error_holdout_trimmed <= (1.0 + parsimony) * cubic.error_holdout_trimmed;
+}
 static bool refines(const CandidateOutcome &big, const CandidateOutcome &small,
-                    const SelectionScales &sc) {
+                    const SelectionScales &sc, double parsimony) {
   if (big.cand.name == "softening" && small.cand.name == "cubic_stiffness" &&
-      small.fit.model.p.k3 < 0.0) {
-    const double d = big.fit.model.p.sat_disp;
-    const bool saturates = d > 0.0 && d <= sc.stroke;
+      small.fit.model.p.k3 < 0.0)
     return takes_most_of(big.error_holdout_trimmed, small.error_holdout_trimmed, sc.sel) ||
-           (saturates && no_worse(big, small));
-  }
+           saturating_spring_fits(big, small, sc, parsimony);
   if (big.cand.name == "relaxation_spectrum" && small.cand.name == "viscous")
     return big.error_holdout_trimmed <= small.error_holdout_trimmed &&
            takes_most_of(big.fit.error, small.fit.error, sc.fit);
@@ -922,7 +932,7 @@ const CandidateOutcome *select_cause(const std::vector<CandidateOutcome> &round,
                                      double parsimony, const SelectionScales &scales) {
   auto refined = [&](const CandidateOutcome &co) {
     for (const CandidateOutcome &o : round)
-      if (o.eligible && refines(o, co, scales)) return true;
+      if (o.eligible && refines(o, co, scales, parsimony)) return true;
     return false;
   };
   const CandidateOutcome *best = nullptr;
@@ -930,7 +940,14 @@ const CandidateOutcome *select_cause(const std::vector<CandidateOutcome> &round,
     if (co.eligible && (!best || co.error_holdout_trimmed < best->error_holdout_trimmed)) best = &co;
   if (!best) return nullptr;
   const double within = (1.0 + parsimony) * best->error_holdout_trimmed;
+  // A refined best (a cubic beside a spring that saturates in the records)
+  // yields to the lowest unrefined candidate within parsimony.
   const CandidateOutcome *pick = best;
+  if (refined(*best))
+    for (const CandidateOutcome &co : round)
+      if (co.eligible && co.error_holdout_trimmed <= within && !refined(co) &&
+          (pick == best || co.error_holdout_trimmed < pick->error_holdout_trimmed))
+        pick = &co;
   for (const CandidateOutcome &co : round) {
     if (!co.eligible || co.error_holdout_trimmed > within || refined(co)) continue;
     const size_t n = net_parameter_count(co), m = net_parameter_count(*pick);

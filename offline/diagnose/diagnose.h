@@ -231,9 +231,11 @@ struct CandidateOutcome {
 // softening 3.59% against a floor of 3.49%; refgen's degressive cubics tie
 // within 0.01 point). So too when the fitted spring saturates within the
 // stroke (its width d at most the records' largest |x|, where the cubic
-// form is off by 40%) and is at least as good on both the fit and the
-// held-out records (blindgen inertia+softening_s13: d = 1.97 mm within 2.73
-// mm, 4.28% / 8.48% against the cubic's 4.38% / 9.01%; a softening spring
+// form is off by 40%), is at least as good on the fit records, which hold
+// the largest strokes, and within `parsimony` of the cubic held out
+// (blindgen inertia+softening_s13: d = 1.97 mm within 2.73 mm, 4.28% /
+// 8.48% against the cubic's 4.38% / 9.01%; inertia+softening_s54: d = 1.03
+// mm within 1.15 mm, 4.584% / 4.922% against 4.601% / 4.875%; a softening spring
 // fitted to refgen's degressive cubics, seeds 3-5, has d = 2.1-2.5 mm at
 // strokes of 1.1-1.3 mm: the records show no saturation). Likewise a
 // relaxation spectrum's fastest branches are a dashpot: when the spectrum
