@@ -121,14 +121,32 @@ StsParams invert_sts(const LoopFeatures &f, int N) {
   return s;
 }
 
-rtb_params rt_start_from_sts(const StsParams &s, const LoopFeatures &f, int cells, double alpha0,
-                             std::string *note) {
+// Eq. (21)-(24) are solved together: when one of them comes out negative the
+// loop is no STS loop (a nearly elliptic one makes their common denominator
+// small) and the others are as far off (tests/identify_test.cpp,
+// StsInit.NonPhysicalInversionTakesTheFallbacksForAll). All NaN: no loop
+// was inverted (sts_initial_guess's generic start).
+static bool non_physical(const StsParams &s) {
+  auto pos = [](double v) { return std::isfinite(v) && v > 0.0; };
+  const bool inverted = !(std::isnan(s.K0) && std::isnan(s.Kpa) && std::isnan(s.Kr) && std::isnan(s.Ff));
+  return inverted && !(std::isfinite(s.K0) && s.K0 >= 0.0 && pos(s.Kpa) && pos(s.Kr) && pos(s.Ff));
+}
+
+rtb_params rt_start_from_sts(const StsParams &inverted, const LoopFeatures &f, int cells,
+                             double alpha0, std::string *note) {
+  const bool off = non_physical(inverted);
+  if (off && note) *note += "eq. (21)-(24) give a non-physical set: eq. (25) fallbacks for all; ";
+  // A measured loop still gives the sliding level: the peak force that K0
+  // (the fallback Ksec / 2) does not carry, shared by the cells, as
+  // friction_initial_guess reads it.
+  const StsParams s = off ? StsParams{NAN, NAN, NAN, (f.Fmax - 0.5 * f.Ksec * f.Xmax) / cells}
+                          : inverted;
   rtb_params p;
   rtb_params_default(&p, RTB_MODEL_RT);
   p.cells = cells;
   auto pos = [&](double v, double fallback, const char *name) {
     if (std::isfinite(v) && v > 0.0) return v;
-    if (note) *note += std::string(name) + " from eq. (21)-(24) not positive; ";
+    if (note && !off) *note += std::string(name) + " from eq. (21)-(24) not positive; ";
     return fallback;
   };
   p.K0 = std::isfinite(s.K0) && s.K0 >= 0.0 ? s.K0 : 0.5 * f.Ksec;  // eq. (25)

@@ -34,9 +34,12 @@ struct StsParams {
 // (2 Fmax, 2 Xmax): eq. (20) as printed is the peak-to-peak force.
 StsParams invert_sts(const LoopFeatures &f, int cells);
 
-// eq. (25)-(26): K0, Kpa, Kr from STS, C0 = Ff / V0^alpha0. Non-physical
-// inversions (a negative stiffness from inconsistent features) are clamped
-// to a positive fraction of the secant stiffness and reported in `note`.
+// eq. (25)-(26): K0, Kpa, Kr from STS, C0 = Ff / V0^alpha0. A non-physical
+// inversion (any of K0 < 0, Kpa, Kr, Ff <= 0: inconsistent features) is
+// replaced as a whole by the fallbacks (K0 = Ksec / 2, Kpa = max(Tg1 - K0,
+// Ksec / 2), Kr = cells Kpa) with the loop's sliding level, Ff = (Fmax - K0
+// Xmax) / cells, and reported in `note`. Without a loop (all NaN) Ff =
+// Fmax / (10 cells).
 rtb_params rt_start_from_sts(const StsParams &s, const LoopFeatures &f, int cells, double alpha0,
                              std::string *note = nullptr);
 
