@@ -136,11 +136,7 @@ rtb_params rt_start_from_sts(const StsParams &inverted, const LoopFeatures &f, i
                              double alpha0, std::string *note) {
   const bool off = non_physical(inverted);
   if (off && note) *note += "eq. (21)-(24) give a non-physical set: eq. (25) fallbacks for all; ";
-  // A measured loop still gives the sliding level: the peak force that K0
-  // (the fallback Ksec / 2) does not carry, shared by the cells, as
-  // friction_initial_guess reads it.
-  const StsParams s = off ? StsParams{NAN, NAN, NAN, (f.Fmax - 0.5 * f.Ksec * f.Xmax) / cells}
-                          : inverted;
+  const StsParams s = off ? StsParams{NAN, NAN, NAN, NAN} : inverted;
   rtb_params p;
   rtb_params_default(&p, RTB_MODEL_RT);
   p.cells = cells;
@@ -152,7 +148,11 @@ rtb_params rt_start_from_sts(const StsParams &inverted, const LoopFeatures &f, i
   p.K0 = std::isfinite(s.K0) && s.K0 >= 0.0 ? s.K0 : 0.5 * f.Ksec;  // eq. (25)
   p.Kpa = pos(s.Kpa, std::fmax(f.Tg1 - p.K0, 0.5 * f.Ksec), "Kpa");
   p.Kr = pos(s.Kr, cells * p.Kpa, "Kr");
-  const double Ff = pos(s.Ff, 0.1 * f.Fmax / cells, "Ff");
+  // A measured loop still gives the sliding level, the peak force that K0
+  // does not carry, shared by the cells (as friction_initial_guess reads
+  // it); without a loop, a tenth of the peak force.
+  const double level = off ? f.Fmax - p.K0 * f.Xmax : 0.1 * f.Fmax;
+  const double Ff = pos(s.Ff, level / cells, "Ff");
   p.alpha = alpha0;
   p.C0 = Ff / std::pow(std::fmax(f.V0, 1e-300), alpha0);  // eq. (26)
   return p;
