@@ -332,6 +332,36 @@ TEST(JointFitOrder, ANearTieAtTheCutIsFittedToo) {
   EXPECT_EQ(o[0], 1u);
 }
 
+// Stage 4, past the cut: the significant words screened out go by z, not by
+// misfit reduction (blindgen mullins_s56: the erf Mullins loss screened at
+// z = 190 with its short fit's reduction clamped at 0, behind three
+// linearized words at 0.06-0.18 that the cut had already judged; fitted, it
+// is the cause). Words already fitted, insignificant or left out for another
+// reason than the screen are not taken.
+TEST(JointFitOrder, PastTheCutTheMostSignificantWordsAreFitted) {
+  auto screened = [](const std::string &name, double dJ, double z, const char *why) {
+    CandidateOutcome o = outcome(name, 1, 0.0, false, false);
+    o.joint = false;
+    o.screen.z = z;
+    o.screen.dJ = dJ;
+    o.why = why;
+    return o;
+  };
+  const char *out = "screened out: smaller misfit reduction than others";
+  std::vector<CandidateOutcome> r = {
+      screened("backlash", 0.058, 15.0, out), screened("offset", 0.180, 12.0, out),
+      screened("friction_asymmetry", 0.181, 12.8, out), screened("mullins", 0.0, 190.0, out),
+      screened("viscous", 0.176, 0.8, "screened out: effect not significant"),
+      screened("slack", 0.0, 0.0, "excluded by the data: the specimen pushes"),
+      screened("cubic_stiffness", 0.214, 34.4, "held-out gain below min_gain")};
+  r.back().joint = true;
+  EXPECT_EQ(diag::past_the_cut_order(r, 3.0, 3), (std::vector<size_t>{3, 0, 2}));
+  EXPECT_EQ(diag::past_the_cut_order(r, 3.0, 1), (std::vector<size_t>{3}));
+  EXPECT_EQ(diag::past_the_cut_order(r, 3.0, 9), (std::vector<size_t>{3, 0, 2, 1}));
+  EXPECT_TRUE(diag::past_the_cut_order(r, 3.0, 0).empty());
+  EXPECT_TRUE(diag::past_the_cut_order(r, 200.0, 3).empty());
+}
+
 }  // namespace
 }  // namespace rtb
 #endif  // RTB_HAVE_OFFLINE

@@ -603,6 +603,7 @@ void fit_branch_rival(std::vector<CandidateOutcome> &out, const Current &cur, co
 // against the cut's 0.0438, so no word was a lead and the verdict was
 // `unexplained`; fitted, it gains 7% held out and leads the pair mullins +
 // delay at the held-out floor (session 37, where it was fitted in round 0).
+// The words past the cut are taken by past_the_cut_order.
 void fit_past_the_cut(std::vector<CandidateOutcome> &out, const Current &cur, const Context &cx,
                       DiagnoseResult &R, double min_gain) {
   const DiagnoseOptions &opt = cx.opt;
@@ -611,16 +612,14 @@ void fit_past_the_cut(std::vector<CandidateOutcome> &out, const Current &cur, co
   const bool far = cur.error_holdout > opt.pair_above_floor * cx.floor_sel ||
                    cur.error_fit > opt.pair_above_floor * cx.floor_fit;
   if (cx.clipped || !far) return;
-  std::vector<size_t> rest;
+  const std::vector<size_t> rest = past_the_cut_order(out, opt.min_z, opt.joint_fits_next);
   std::vector<CandidateOutcome> more;
-  for (size_t i = 0; i < out.size(); ++i)
-    if (!out[i].joint && out[i].screen.z >= opt.min_z && out[i].why.rfind("screened out", 0) == 0) {
-      rest.push_back(i);
-      more.push_back(out[i]);
-      more.back().why.clear();
-    }
+  for (size_t i : rest) {
+    more.push_back(out[i]);
+    more.back().why.clear();
+  }
   if (more.empty()) return;
-  joint_fits(more, cur, cx, opt.joint_fits_next, "");
+  joint_fits(more, cur, cx, (int)more.size(), "");
   for (size_t k = 0; k < more.size(); ++k) {
     CandidateOutcome &co = more[k];
     if (!co.joint) {
@@ -673,6 +672,18 @@ void demote_lead_twins(std::vector<CandidateOutcome> &out, const Current &cur) {
 }
 
 }  // namespace
+
+std::vector<size_t> past_the_cut_order(const std::vector<CandidateOutcome> &out, double min_z,
+                                       int how_many) {
+  std::vector<size_t> rest;
+  for (size_t i = 0; i < out.size(); ++i)
+    if (!out[i].joint && out[i].screen.z >= min_z && out[i].why.rfind("screened out", 0) == 0)
+      rest.push_back(i);
+  std::stable_sort(rest.begin(), rest.end(),
+                   [&](size_t p, size_t q) { return out[p].screen.z > out[q].screen.z; });
+  rest.resize(std::min(rest.size(), (size_t)std::max(0, how_many)));
+  return rest;
+}
 
 std::vector<size_t> joint_fit_order(const std::vector<CandidateOutcome> &out, double min_z,
                                     int how_many, double tie, const std::string &imposed) {

@@ -17,7 +17,7 @@
 // 4. joint fits   the most promising candidates fitted jointly with the
 //                 current model's parameters on the fit records; when the
 //                 first round names none and the baseline is far above a
-//                 floor, the next few by screen too (fit_past_the_cut).
+//                 floor, the next few by significance too (fit_past_the_cut).
 // 5. selection    a candidate is eligible when its amplitude is significant
 //                 (z >= min_z), the fit improves by more than its parameter
 //                 count explains (delta BIC >= min_dbic), the held-out error
