@@ -102,7 +102,7 @@ Current baseline_and_first_round(Context &cx, DiagnoseResult &R,
     R.baseline.p = R.baseline_fit.params;
     cur = diag::make_current(R.baseline, core, {}, cx);
     // 2. Noise floor of the baseline residual.
-    R.floor = estimate_noise_floor(R.baseline, cx.fit, cx.holdout, opt.misfit);
+    R.floor = estimate_noise_floor(R.baseline, cx.fit, cx.holdout, opt.misfit, cx.recorded_x);
     cx.sigma = R.floor.sigma_fit;
     cx.sigma.insert(cx.sigma.end(), R.floor.sigma_holdout.begin(), R.floor.sigma_holdout.end());
     cx.floor_sel = R.has_holdout ? R.floor.error_holdout : R.floor.error_fit;
@@ -299,6 +299,8 @@ DiagnoseResult diagnose(const std::vector<Record> &fit_in, const std::vector<Rec
   DiagnoseResult R;
   // 0. The model input: one decision for all records.
   std::vector<Record> both = concat(fit_in, holdout_in);
+  std::vector<std::vector<double>> recorded_x;  // for the noise floor's correlation
+  for (const Record &r : both) recorded_x.push_back(r.x);
   R.denoise = denoise_displacement(both);
   R.clipping = mask_force_clipping(both);
   R.spikes = mask_force_spikes(both);
@@ -310,6 +312,7 @@ DiagnoseResult diagnose(const std::vector<Record> &fit_in, const std::vector<Rec
   Context cx{fit, holdout, concat(fit, holdout), R.has_holdout ? holdout : fit,
              R.has_holdout ? hold_opt : opt.misfit, opt, data_scales(fit), {}};
   cx.clipped = !R.clipping.empty();
+  cx.recorded_x = std::move(recorded_x);
   // A record's length is part of its input: the spectrum's memory reaches
   // the longest one the model is run on, held-out ones too (VHB 4910: holds
   // of 1800 s, fit records of at most 400 s; with softening, spectrum, slack

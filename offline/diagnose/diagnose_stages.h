@@ -62,6 +62,7 @@ struct Context {
   double floor_fit = 0.0;     // and on `fit`
   SelectionScales selection_scales() const { return {floor_sel, floor_fit, sc.Xmax}; }
   bool clipped = false;       // stage 0 found a saturated force channel
+  std::vector<std::vector<double>> recorded_x = {};  // `all`'s displacement before stage 0's filter
 };
 
 // The figures of model m with `causes` (free set `spec`) on the context.

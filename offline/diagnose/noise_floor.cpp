@@ -139,6 +139,31 @@ double floor_error(const std::vector<Record> &recs, const std::vector<std::vecto
   return J0 > 0.0 ? std::sqrt(Jn / J0) : 0.0;
 }
 
+// The median over residuals e of their noise correlation.
+double median_correlation(const std::vector<std::vector<double>> &ef,
+                          const std::vector<std::vector<double>> &eh) {
+  std::vector<double> a;
+  for (const auto *set : {&ef, &eh})
+    for (const std::vector<double> &e : *set) a.push_back(noise_correlation(e));
+  return median(a);
+}
+
+// The records with the recorded displacement put back; empty when it is
+// theirs already (stage 0 did not filter).
+std::vector<Record> as_recorded(const std::vector<Record> &recs, size_t first,
+                                const std::vector<std::vector<double>> &recorded_x) {
+  std::vector<Record> out;
+  bool differs = false;
+  for (size_t r = 0; r < recs.size(); ++r) {
+    out.push_back(recs[r]);
+    if (first + r >= recorded_x.size() || recorded_x[first + r].size() != recs[r].x.size())
+      return {};  // not given for every record: the records' own
+    differs = differs || recorded_x[first + r] != recs[r].x;
+    out.back().x = recorded_x[first + r];
+  }
+  return differs ? out : std::vector<Record>{};
+}
+
 }  // namespace
 
 // The correlation is the acquisition chain's, shared by every record: the
@@ -146,13 +171,15 @@ double floor_error(const std::vector<Record> &recs, const std::vector<std::vecto
 // baseline's residual on a delay's step record: 0.46) is one record's, not
 // the chain's, and must not raise the floor of the others.
 NoiseFloor estimate_noise_floor(const ExtModel &m, const std::vector<Record> &fit,
-                                const std::vector<Record> &holdout, const MisfitOptions &opt) {
+                                const std::vector<Record> &holdout, const MisfitOptions &opt,
+                                const std::vector<std::vector<double>> &recorded_x) {
   NoiseFloor nf;
   const std::vector<std::vector<double>> ef = residuals(m, fit, opt), eh = residuals(m, holdout, opt);
-  std::vector<double> a;
-  for (const auto *set : {&ef, &eh})
-    for (const std::vector<double> &e : *set) a.push_back(noise_correlation(e));
-  const double chain = median(a);
+  double chain = median_correlation(ef, eh);
+  const std::vector<Record> rf = as_recorded(fit, 0, recorded_x),
+                            rh = as_recorded(holdout, fit.size(), recorded_x);
+  if (!rf.empty() && (holdout.empty() || !rh.empty()))
+    chain = std::max(chain, median_correlation(residuals(m, rf, opt), residuals(m, rh, opt)));
   nf.correlation = chain >= kWhiteBelow ? chain : 0.0;
   nf.error_fit = floor_error(fit, ef, nf.correlation, opt.fit_from, &nf.sigma_fit);
   nf.error_holdout = holdout.empty()

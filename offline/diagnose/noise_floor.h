@@ -19,6 +19,14 @@
 // a = 0.2, and a is capped at 0.8 (beyond, q(a^L) hardly changes with L and
 // a would be guessed, in the direction that raises the floor). The
 // correlation is the chain's: the median over the records of a diagnosis.
+// Stage 0's displacement filter reshapes the displacement's share of the
+// residual (the model returns K lp(x_noise), correlated over more lags than
+// the chain's a^|k|), so the four lags of that residual may fit no a^|k| at
+// all; the residual on the recorded displacement, whose noise on both
+// channels came through the same chain, still does. The correlation is the
+// larger of the two medians (refgen colored_noise_s57, a 135 Hz corner at
+// 1 kHz: filtered residual no fit, taken as white, `unexplained` at 2.2x a
+// floor of 0.90%; recorded displacement a = 0.36, floor 1.57%).
 // The floor is the eq. (27) error that noise alone would give on a set of
 // records: sqrt(sum_r w_r sigma_r^2 T_r / (2 J0)).
 #ifndef RTB_OFFLINE_NOISE_FLOOR_H
@@ -53,8 +61,11 @@ struct NoiseFloor {
 };
 
 // The floor of model m's residual on each set (holdout may be empty).
+// recorded_x: each record's displacement as recorded, before stage 0's
+// filter, fit records then held-out ones (empty: the records' own).
 NoiseFloor estimate_noise_floor(const ExtModel &m, const std::vector<Record> &fit,
-                                const std::vector<Record> &holdout, const MisfitOptions &opt);
+                                const std::vector<Record> &holdout, const MisfitOptions &opt,
+                                const std::vector<std::vector<double>> &recorded_x = {});
 
 }  // namespace rtb
 
