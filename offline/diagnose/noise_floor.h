@@ -26,7 +26,7 @@
 // channels came through the same chain, still does. The correlation is the
 // larger of the two medians (refgen colored_noise_s57, a 135 Hz corner at
 // 1 kHz: filtered residual no fit, taken as white, `unexplained` at 2.2x a
-// floor of 0.90%; recorded displacement a = 0.36, floor 1.57%).
+// floor of 0.90%; with the recorded displacement a = 0.35, floor 1.61%).
 // The floor is the eq. (27) error that noise alone would give on a set of
 // records: sqrt(sum_r w_r sigma_r^2 T_r / (2 J0)).
 #ifndef RTB_OFFLINE_NOISE_FLOOR_H
