@@ -26,7 +26,8 @@
 namespace rtb {
 
 // "" unless the records exclude candidate c before any fit, e.g. slack on a
-// specimen whose measured force is clearly negative somewhere (it pushes).
+// specimen whose measured force is clearly negative somewhere (it pushes:
+// below 5% of the peak and 6 noise sigmas).
 std::string excluded_by_data(const Candidate &c, const std::vector<Record> &recs);
 
 // "" when the data do not contradict candidate c as fitted (model `fitted`,
