@@ -170,7 +170,10 @@ typedef struct rtb_params {
   rtb_real maxwell_k;   /* extra Maxwell branch stiffness, >= 0  [force/length] */
   rtb_real maxwell_tau; /* its relaxation time, > 0 when maxwell_k > 0 [time] */
   rtb_real viscous_c;   /* parallel linear dashpot: F += c v, >= 0 [force time/length] */
-  rtb_real mass;        /* inertia in the load path: F += m a     [force time^2/length] */
+  rtb_real mass;        /* inertia in the load path: F += m a, a the input's
+                           acceleration at the step's end from the last four
+                           samples (no lag where x is smooth; step.cpp,
+                           input_motion)          [force time^2/length] */
   rtb_real backlash;    /* total clearance g in series, >= 0     [length] */
   rtb_real mullins;     /* Mullins softening fraction mu in [0, 1) below the
                            prior maximum |xb|: of K0, or of the whole RT force
@@ -353,7 +356,14 @@ typedef struct rtb_state {
   rtb_real xb_max;             /* prior maximum |xb| (Mullins memory) */
   rtb_real vx;                 /* last input velocity estimate (inertia) */
   rtb_real z_spec[RTB_MAX_BRANCHES]; /* relaxation-spectrum branch displacements */
-  rtb_real reserved[8];
+  rtb_real ax;                 /* input acceleration at the last step's end,
+                                  the inertia term's a [length/time^2] */
+  rtb_real ax_c;               /* ... as a centred second difference, */
+  rtb_real ax_age;             /* ... placed this long before the end
+                                  (0: none yet) [time] */
+  rtb_real ax_slope;           /* ... and its slope from the one before */
+  rtb_real x_dt;               /* length of the last step, any model [time] */
+  rtb_real reserved[3];
   int64_t steps;               /* committed steps */
   int32_t last_iterations;     /* Newton iterations used by the last step */
   int32_t contact;             /* phase of the bushing end in the last step:

@@ -171,7 +171,7 @@ ForceLin force_lin(const StepView &v, const rtb_spectrum &sp, bool with_inertia)
   L.g[P_spec_k] = f.d_spec_k;
   L.g[P_spec_exp] = f.d_spec_exp;
   L.g[P_relax_width] = f.d_relax_width;
-  if (with_inertia) L.g[P_mass] = (v.vx_new - v.vx_old) / v.dt;
+  if (with_inertia) L.g[P_mass] = v.ax_new;
   return L;
 }
 

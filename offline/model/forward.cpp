@@ -95,11 +95,11 @@ DriveGrid make_drive_grid(const Record &rec, const SimOptions &opt) {
 }
 
 namespace {
-// Record layout per step: xb, vx, z, xb_max, contact, z_spec[M], y[n], then
+// Record layout per step: xb, ax (the inertia term's acceleration), z, xb_max, contact, z_spec[M], y[n], then
 // per stage h f[n] v[n] y[n].
 void store(const rtb_state &s, const rtb_stage *stg, int ns, int n, int M, double *d) {
   d[0] = s.xb;
-  d[1] = s.vx;
+  d[1] = s.ax;
   d[2] = s.z_maxwell;
   d[3] = s.xb_max;
   d[4] = s.contact;
@@ -127,12 +127,11 @@ StepView Trajectory::step(const rtb_params &p, const DriveGrid &g, size_t i) con
   v.p = &p;
   v.dt = g.dt[i];
   v.xb_old = a[0];
-  v.vx_old = a[1];
   v.z_old = a[2];
   v.xbmax_old = a[3];
   v.zs_old = a + 5;
   v.xb_new = b[0];
-  v.vx_new = b[1];
+  v.ax_new = b[1];
   v.z_new = b[2];
   v.contact = (int)b[4];
   v.zs_new = b + 5;
@@ -161,12 +160,15 @@ Trajectory run_forward(const rtb_params &p, const DriveGrid &grid, bool keep_tra
   // start with a velocity jump: start the input-velocity memory (inertia
   // term) at the record's initial velocity, not at rest, so that m a has no
   // spurious impulse m v0/dt at the first sample.
-  // The same for a record that starts from a hold. The input velocity is not
-  // a function of the parameters, so resetting it leaves the adjoint exact.
+  // The same for a record that starts from a hold. The acceleration is then
+  // not extrapolated from before the reset (ax_age = 0), and v0's step is the
+  // record's, not the hold's. The input's motion is
+  // not a function of the parameters, so resetting it leaves the adjoint exact.
   const size_t first = (size_t)grid.first_sample;
   const bool reset_vx = (first == 0 || grid.held) && first + 1 < n;
   const double v0 = reset_vx ? (grid.x[first + 1] - grid.x[first]) / grid.dt[first + 1] : 0.0;
-  if (reset_vx && first == 0) s.vx = v0;
+  const double h0 = reset_vx ? grid.dt[first + 1] : 0.0;  // the step v0 is taken over
+  if (reset_vx && first == 0) s.vx = v0, s.x_dt = h0, s.ax_age = 0.0;
   tr.force.resize(n);
   tr.force[0] = s.force;
   const size_t S = tr.stride();
@@ -186,7 +188,7 @@ Trajectory run_forward(const rtb_params &p, const DriveGrid &grid, bool keep_tra
     if (st == RTB_NOT_CONVERGED) ++tr.not_converged;
     tr.newton_iterations += next.last_iterations;
     s = next;
-    if (reset_vx && i == first) s.vx = v0;
+    if (reset_vx && i == first) s.vx = v0, s.x_dt = h0, s.ax_age = 0.0;
     tr.force[i] = F;
     if (keep_trace) store(s, stg, tr.n_stages, p.cells, tr.branches, &tr.data[i * S]);
   }

@@ -52,7 +52,7 @@ struct StepView {
   const rtb_params *p;
   double dt;
   double xb_old, xb_new;      // bushing displacements
-  double vx_old, vx_new;      // input velocity estimates (inertia)
+  double ax_new;              // input acceleration estimate (inertia)
   double z_old, z_new;        // Maxwell branch
   const double *zs_old, *zs_new;  // relaxation-spectrum branches (M each)
   double xbmax_old;           // Mullins memory before the step
