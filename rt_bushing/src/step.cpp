@@ -384,7 +384,7 @@ static InputMotion input_motion(const rtb_state *s, rtb_real x, rtb_real dt) {
       w = even ? 1.0 : m.age / gap;
   }
   m.a = m.a_c + w * (m.a_c - s->ax_c);
-  m.da_dx = (1.0 + w) * inv / span;
+  m.da_dx = (1.0 + w) * inv * (uniform ? inv : 1.0 / span);
   return m;
 }
 
