@@ -95,8 +95,8 @@ DriveGrid make_drive_grid(const Record &rec, const SimOptions &opt) {
 }
 
 namespace {
-// Record layout per step: xb, ax (the inertia term's acceleration), z, xb_max, contact, z_spec[M], y[n], then
-// per stage h f[n] v[n] y[n].
+// Record layout per step: xb, ax (the inertia term's acceleration), z,
+// xb_max, contact, z_spec[M], y[n], then per stage h f[n] v[n] y[n].
 void store(const rtb_state &s, const rtb_stage *stg, int ns, int n, int M, double *d) {
   d[0] = s.xb;
   d[1] = s.ax;
@@ -162,8 +162,8 @@ Trajectory run_forward(const rtb_params &p, const DriveGrid &grid, bool keep_tra
   // spurious impulse m v0/dt at the first sample.
   // The same for a record that starts from a hold. The acceleration is then
   // not extrapolated from before the reset (ax_age = 0), and v0's step is the
-  // record's, not the hold's. The input's motion is
-  // not a function of the parameters, so resetting it leaves the adjoint exact.
+  // record's, not the hold's. The input's motion is not a function of the
+  // parameters, so resetting it leaves the adjoint exact.
   const size_t first = (size_t)grid.first_sample;
   const bool reset_vx = (first == 0 || grid.held) && first + 1 < n;
   const double v0 = reset_vx ? (grid.x[first + 1] - grid.x[first]) / grid.dt[first + 1] : 0.0;
