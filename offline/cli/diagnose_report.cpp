@@ -131,7 +131,8 @@ nlohmann::ordered_json diagnosis_json(const DiagnoseResult &R, const std::vector
                               {"record_cutoff_hz", R.denoise.record_cutoff_hz},
                               {"sigma_x", R.denoise.sigma_x},
                               {"sigma_F", R.denoise.sigma_F},
-                              {"noise_ratio", R.denoise.noise_ratio}};
+                              {"noise_ratio", R.denoise.noise_ratio},
+                              {"correlation", R.denoise.correlation}};
   j["residual_above_floor"] = R.residual_above_floor;
   if (R.residual_above_floor)
     j["signature"] = {{"text", R.signature.text},

@@ -166,6 +166,17 @@ struct DiagnoseOptions {
   // held-out error from 21.2% to 9.6%). Not chained, and no tie at a cut
   // of zero reduction.
   double joint_fit_tie = 0.9;
+  // Stage 4: a word fitted jointly that adds less than 1/dominance of what
+  // the round's leading word adds beyond the model's own step (screen.h:
+  // dJ - dJ_model) gets a brief fit, at most dominated_max_iter iterations
+  // and no restarts; its whole fit follows when the judged round leaves it
+  // in the running: no word fitted in full is eligible, or it is eligible or
+  // within dominated_reach times the best eligible word's trimmed held-out
+  // error (dominated_fits.cpp; blindgen inertia_s59 at 1 kHz: 155 -> 87 s,
+  // the same verdict). dominance 0: every word gets its whole fit.
+  double dominance = 8.0;
+  int dominated_max_iter = 10;
+  double dominated_reach = 2.0;
   // Iteration budget of the baseline fit. Data with an effect the RT model
   // lacks can send it down a long valley towards a limit model (rigid cells
   // mimicking an inertia force: 1000 iterations, 170 s); the joint fits start
@@ -215,6 +226,9 @@ struct CandidateOutcome {
   // Where its joint fit started when not at the screen's start: "" or, from
   // stage 5e, "refitted alone from the <a> + <b> pair".
   std::string origin;
+  // Fitted briefly, its screen dominated by the round's leader
+  // (DiagnoseOptions::dominance); its figures are those of that brief fit.
+  bool brief = false;
   ModelErrors errors() const { return {fit.error, error_holdout, error_holdout_trimmed}; }
 };
 

@@ -90,6 +90,32 @@ std::vector<size_t> joint_fit_order(const std::vector<CandidateOutcome> &out, do
 std::vector<size_t> past_the_cut_order(const std::vector<CandidateOutcome> &out, double min_z,
                                        int how_many);
 
+// Stage 5a again, on a fit that replaced the one judged: the verdict and its
+// reason are recomputed from nothing.
+void judge_anew(CandidateOutcome &co, const Current &cur, const Context &cx, double min_gain);
+
+// Stage 4 for one word: its joint fit with the current causes from the
+// screen's start, its other definition and the restarts of its basin; only
+// the first fit, with DiagnoseOptions::dominated_max_iter, when co.brief.
+void fit_word(CandidateOutcome &co, const Current &cur, const Context &cx);
+
+// Stage 4's brief fits (dominated_fits.cpp): marks co.brief on the words
+// `fitted` (indices into `out`) that add less than 1/dominance of what the
+// leader among them adds beyond the model's own step (screen.h: dJ -
+// dJ_model), with the report's note for a fit of max_iter iterations; never
+// a word screened by a short fit, whose screen can underrate it. Not called
+// in a what-if round or past the screen's cut. dominance <= 0: none.
+void mark_dominated(std::vector<CandidateOutcome> &out, const std::vector<size_t> &fitted,
+                    double dominance, int max_iter);
+// After stage 5a, the brief words the judged round leaves in the running:
+// all of them when no word fitted in full is eligible; else those fitted
+// that are eligible or within `reach` times the best eligible word's trimmed
+// held-out error.
+std::vector<size_t> brief_fits_to_complete(const std::vector<CandidateOutcome> &out, double reach);
+// Their whole fits (fit_word), each judged anew.
+void complete_dominated_fits(std::vector<CandidateOutcome> &out, const Current &cur,
+                             const Context &cx, double min_gain);
+
 // Stages 3-5a at the current model: the outcomes of every remaining
 // candidate of the vocabulary (screened, the best fitted jointly, judged).
 // Adds the screening and joint-fit wall time to R.

@@ -33,6 +33,7 @@ struct DisplacementDenoise {
   double sigma_x = 0.0;       // largest per-record white-noise level of x [length]
   double sigma_F = 0.0;       // ... of F [force]
   double noise_ratio = 0.0;   // K sigma_x / sigma_F, K = twice the secant stiffness
+  double correlation = 0.0;   // lag-1 correlation of x's noise (0: white), when filtered
 };
 
 // Decide and apply (in place, on every record with a uniform time grid):
