@@ -148,6 +148,10 @@ struct DiagnoseOptions {
   // friction_start_margin times it.
   double friction_start_above = 0.15;
   double friction_start_margin = 0.8;
+  // The friction start's fit is probed for this many iterations (no
+  // restarts) and run to the end only when the probe already fits better
+  // than the STS start's end: the margin above leaves 20% to the rest.
+  int friction_probe_iter = 20;
   // After a cause is accepted, a refit from the STS start replaces the
   // accepted fit when its fit error is lower by more than this fraction.
   double refit_margin = 0.01;
@@ -170,10 +174,10 @@ struct DiagnoseOptions {
   // the round's leading word adds beyond the model's own step (screen.h:
   // dJ - dJ_model) gets a brief fit, at most dominated_max_iter iterations
   // and no restarts; its whole fit follows when the judged round leaves it
-  // in the running: no word fitted in full is eligible, or it is eligible or
-  // within dominated_reach times the best eligible word's trimmed held-out
-  // error (dominated_fits.cpp; blindgen inertia_s59 at 1 kHz: 155 -> 87 s,
-  // the same verdict). dominance 0: every word gets its whole fit.
+  // in the running: no word fitted in full is eligible, or it is within
+  // dominated_reach times the best eligible word's trimmed held-out error
+  // (dominated_fits.cpp; blindgen inertia_s59 at 1 kHz: 155 -> 87 s, the
+  // same verdict). dominance 0: every word gets its whole fit.
   double dominance = 8.0;
   int dominated_max_iter = 10;
   double dominated_reach = 2.0;

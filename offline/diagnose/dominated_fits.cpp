@@ -15,12 +15,16 @@
 // Safe by construction where it matters: a brief fit is judged like any
 // other, and when no fully fitted word is eligible (the pair stage, the
 // words past the cut and the basin repairs then need real fits), or when a
-// brief word is eligible or within dominated_reach of the best eligible
-// word's held-out error, it gets its whole fit, as it had before, and is
-// judged anew. A word screened by a short fit (clearance, slack, Mullins)
-// is never brief: its 6-iteration screen can underrate it (blindgen
-// mullins_s56: z = 190 with its reduction clamped at 0; fitted, 10.4% ->
-// 2.5% held out).
+// brief word is within dominated_reach of the best eligible word's held-out
+// error, it gets its whole fit, as it had before, and is judged anew. A
+// brief word beyond that reach is out of the running even when it is
+// eligible: the round selects the best word, and the next round screens
+// every word again (inertia_s59's force lead, eligible at 62% held out
+// beside the mass's 8.5%, took 10 s of the round's 22 s to its 60-iteration
+// cap and was then demoted as the mass's twin). A word screened by a short
+// fit (clearance, slack, Mullins) is never brief: its 6-iteration screen can
+// underrate it (blindgen mullins_s56: z = 190 with its reduction clamped at
+// 0; fitted, 10.4% -> 2.5% held out).
 #include <algorithm>
 #include <cstdio>
 
@@ -64,8 +68,7 @@ std::vector<size_t> brief_fits_to_complete(const std::vector<CandidateOutcome> &
   for (size_t i = 0; i < out.size(); ++i) {
     const CandidateOutcome &co = out[i];
     if (!co.brief) continue;
-    if (!best || (co.joint && (co.eligible || co.error_holdout_trimmed <
-                                                  reach * best->error_holdout_trimmed)))
+    if (!best || (co.joint && co.error_holdout_trimmed < reach * best->error_holdout_trimmed))
       again.push_back(i);
   }
   return again;
